@@ -1,0 +1,183 @@
+"""Command line: `rotbeam simulate` (one scene) and `rotbeam modes` (linearised frequencies).
+
+Bad input gives one line on stderr and exit status 2, never a traceback.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import sys
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from .params import BETA1, Beam, RotbeamInputError
+
+EXIT_USAGE = 2
+
+
+class _Parser(argparse.ArgumentParser):
+    def error(self, message: str) -> None:  # one line, exit 2
+        self.exit(EXIT_USAGE, f"rotbeam: error: {message}\n")
+
+
+def _finite(text: str) -> float:
+    try:
+        v = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a number") from None
+    if not math.isfinite(v):
+        raise argparse.ArgumentTypeError(f"{text!r} is not a finite number")
+    return v
+
+
+def _int(text: str) -> int:
+    try:
+        return int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not an integer") from None
+
+
+def build_parser() -> argparse.ArgumentParser:
+    p = _Parser(prog="rotbeam", description=__doc__.splitlines()[0])
+    sub = p.add_subparsers(dest="command", required=True, parser_class=_Parser)
+
+    s = sub.add_parser("simulate", help="dynamic and quasi-static response of one scene")
+    s.add_argument("--scene", help="YAML scene file (sections beam, drive, effects, numerics)")
+    s.add_argument("--omega0", type=_finite, help="mean angular velocity Omega_0 [rad/s]")
+    s.add_argument("--fd", type=_finite, help="drive frequency f_d [Hz]")
+    s.add_argument("--amplitude", type=_finite, help="velocity amplitude a [rad/s] (default 1)")
+    s.add_argument("--N", type=_int, help="grid intervals (default 40)")
+    s.add_argument("--R", type=_finite, help="axis to undeformed tip [m] (default 0.155)")
+    s.add_argument("--method", help="Radau, BDF or LSODA")
+    s.add_argument("--rtol", type=_finite, help="time-stepper relative tolerance")
+    s.add_argument("--effects", help="comma list of effects switched on, e.g. centrifugal,euler")
+    s.add_argument("--json", action="store_true", help="print one JSON object")
+    s.add_argument("--out", help="write the time series to this CSV or Parquet file")
+    s.add_argument("--progress", action="store_true", help="report progress on stderr")
+
+    m = sub.add_parser("modes", help="natural frequencies under steady rotation")
+    m.add_argument("--omega", type=_finite, default=0.0, help="angular velocity [rad/s]")
+    m.add_argument("--k", type=_int, default=3, help="number of modes")
+    m.add_argument("--N", type=_int, default=80, help="grid intervals")
+    m.add_argument("--R", type=_finite, help="axis to undeformed tip [m]")
+    m.add_argument("--no-softening", action="store_true", help="flapwise (no in-plane softening)")
+    m.add_argument("--dimensionless", action="store_true", help="answer for the unit beam")
+    m.add_argument("--hub-ratio", type=_finite, default=0.0, help="R_o / L (with --dimensionless)")
+    m.add_argument("--lambda", dest="lam", type=_finite, default=0.0, help="Omega T (dimensionless)")
+    m.add_argument("--json", action="store_true")
+    return p
+
+
+def _scene_from_args(args: argparse.Namespace):
+    from .params import Effects
+    from .scene import build_scene, load_scene_file
+
+    spec: dict[str, Any] = load_scene_file(args.scene) if args.scene else {}
+    spec = {k: dict(v or {}) for k, v in spec.items()} if spec else {}
+    for section, key, value in (
+        ("drive", "omega0", args.omega0),
+        ("drive", "f_d", args.fd),
+        ("drive", "amplitude", args.amplitude),
+        ("numerics", "N", args.N),
+        ("numerics", "method", args.method),
+        ("numerics", "rtol", args.rtol),
+        ("beam", "R", args.R),
+    ):
+        if value is not None:
+            spec.setdefault(section, {})[key] = value
+    if args.effects is not None:
+        spec["effects"] = vars(Effects.from_list(args.effects)).copy()
+    if args.scene is None and (args.omega0 is None or args.fd is None):
+        raise RotbeamInputError("simulate needs --omega0 and --fd (or a --scene file)")
+    return build_scene(spec)
+
+
+def _write_series(path: str, series: dict[str, np.ndarray]) -> None:
+    import pandas as pd
+
+    out = Path(path)
+    out.parent.mkdir(parents=True, exist_ok=True)
+    df = pd.DataFrame(series)
+    tmp = out.with_name(out.name + ".part")
+    if out.suffix == ".parquet":
+        df.to_parquet(tmp)
+    elif out.suffix == ".csv":
+        df.to_csv(tmp, index=False)
+    else:
+        raise RotbeamInputError(f"--out must end in .csv or .parquet, got {path!r}")
+    tmp.replace(out)
+
+
+def cmd_simulate(args: argparse.Namespace) -> int:
+    from .scene import simulate
+
+    scene = _scene_from_args(args)
+    if args.out and Path(args.out).suffix not in (".csv", ".parquet"):
+        raise RotbeamInputError(f"--out must end in .csv or .parquet, got {args.out!r}")
+
+    def progress(k: int, bound: float) -> None:
+        print(f"\rperiod {k}: transient bound {bound:.2e}", end="", file=sys.stderr, flush=True)
+
+    res = simulate(scene, progress=progress if args.progress else None)
+    if args.progress:
+        print(file=sys.stderr)
+    summary = res.summary()
+    if args.out:
+        _write_series(args.out, res.time_series())
+    if args.json:
+        print(json.dumps(summary, default=float))
+    else:
+        for key in ("rms_dynamic", "rms_quasistatic", "delta_rms", "f_n_hz", "C_max", "E_max"):
+            print(f"{key:16s} {summary[key]:.6g}")
+        print(f"{'converged':16s} {summary['converged']} ({summary['message']})")
+        print(f"{'seconds':16s} {summary['seconds']:.3g}")
+    return 0 if res.converged else 1
+
+
+def cmd_modes(args: argparse.Namespace) -> int:
+    from .modes import dimensionless_frequencies, natural_frequencies_hz
+
+    if args.N < 3:
+        raise RotbeamInputError(f"--N must be >= 3, got {args.N}")
+    if not 1 <= args.k < args.N:
+        raise RotbeamInputError(f"--k must be in [1, N-1={args.N - 1}], got {args.k}")
+    soft = not args.no_softening
+    if args.dimensionless:
+        if args.hub_ratio < 0:
+            raise RotbeamInputError(f"--hub-ratio must be >= 0, got {args.hub_ratio}")
+        w = dimensionless_frequencies(args.lam, args.hub_ratio, args.k, args.N, soft)
+        out = {"frequencies_dimensionless": w.tolist(), "lambda": args.lam,
+               "hub_ratio": args.hub_ratio, "beta1_squared": BETA1**2}  # fmt: skip
+    else:
+        beam = Beam(R=args.R) if args.R is not None else Beam()
+        f = natural_frequencies_hz(beam, args.omega, args.k, args.N, soft)
+        out = {"frequencies_hz": f.tolist(), "omega": args.omega, "f_n_hz": beam.f_n}
+    if args.json:
+        print(json.dumps(out))
+    else:
+        for key, val in out.items():
+            print(f"{key}: {val}")
+    return 0
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    try:
+        if args.command == "simulate":
+            return cmd_simulate(args)
+        return cmd_modes(args)
+    except RotbeamInputError as exc:
+        print(f"rotbeam: error: {exc}", file=sys.stderr)
+        return EXIT_USAGE
+    except KeyboardInterrupt:
+        print("rotbeam: interrupted", file=sys.stderr)
+        return 130
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

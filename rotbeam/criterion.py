@@ -1,0 +1,87 @@
+"""The RMS criterion of Sec. 5: RMS (Eq. RMS), Delta RMS (Eq. Delta_RMS), spectra, f_d*."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.optimize import brentq
+
+from .params import RotbeamInputError
+
+
+def rms(y: np.ndarray) -> float:
+    """Root mean square of uniformly sampled values (Eq. RMS)."""
+    y = np.asarray(y, dtype=float)
+    if y.size == 0:
+        raise ValueError("rms of an empty series")
+    return float(np.sqrt(np.mean(y * y)))
+
+
+def delta_rms(rms_dynamic: float, rms_quasistatic: float) -> float:
+    """|RMS_dyn - RMS_QS| / RMS_dyn (Eq. Delta_RMS); NaN only if both are zero."""
+    if rms_dynamic == 0.0:
+        return 0.0 if rms_quasistatic == 0.0 else float("inf")
+    return abs(rms_dynamic - rms_quasistatic) / rms_dynamic
+
+
+def power_spectrum(tau: np.ndarray, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """One-sided |FFT(y)| of a uniformly sampled series; frequencies in cycles per unit of tau."""
+    tau = np.asarray(tau, dtype=float)
+    y = np.asarray(y, dtype=float)
+    dt = float(tau[1] - tau[0])
+    amp = np.abs(np.fft.rfft(y - y.mean())) * 2.0 / y.size
+    return np.fft.rfftfreq(y.size, dt), amp
+
+
+def check_threshold(threshold: float) -> float:
+    if not isinstance(threshold, (int, float)) or not (0.0 < threshold < 1.0):
+        raise RotbeamInputError(f"threshold must be in (0, 1), got {threshold!r}")
+    return float(threshold)
+
+
+@dataclass
+class Crossing:
+    """First crossing of Delta RMS = threshold along a scan."""
+
+    found: bool
+    grid_value: float  #: first scanned point with Delta RMS >= threshold (the paper's rule)
+    root: float  #: the crossing located by root finding (NaN if not requested or not found)
+    bracket: tuple[float, float]
+    message: str
+
+
+def first_crossing(
+    xs: np.ndarray,
+    values: np.ndarray,
+    threshold: float,
+    refine: Callable[[float], float] | None = None,
+    xtol: float = 1e-6,
+) -> Crossing:
+    """Bracket the first crossing of `values` >= threshold on a scan; optionally refine it.
+
+    With `refine` (a function x -> Delta RMS) the root of refine(x) - threshold is found with
+    Brent's method inside the bracket; without it the root is interpolated linearly.
+    """
+    threshold = check_threshold(threshold)
+    xs = np.asarray(xs, dtype=float)
+    values = np.asarray(values, dtype=float)
+    ok = np.isfinite(values)
+    hits = np.nonzero(ok & (values >= threshold))[0]
+    if hits.size == 0:
+        return Crossing(False, np.nan, np.nan, (np.nan, np.nan), "no point reaches the threshold")
+    j = int(hits[0])
+    if j == 0:
+        return Crossing(
+            True, float(xs[0]), np.nan, (np.nan, float(xs[0])), "first scanned point is above"
+        )
+    a, b = float(xs[j - 1]), float(xs[j])
+    va, vb = float(values[j - 1]), float(values[j])
+    if refine is None:
+        root = a + (threshold - va) * (b - a) / (vb - va)
+        msg = "linear interpolation"
+    else:
+        root = brentq(lambda x: refine(x) - threshold, a, b, xtol=xtol)
+        msg = "brentq"
+    return Crossing(True, b, float(root), (a, b), msg)

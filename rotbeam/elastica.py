@@ -1,0 +1,251 @@
+r"""The discrete rotating elastica of Appendix A, re-derived from Eqs. (EOM1-3) and (BC).
+
+Continuum model (dimensionless, time by T, see `rotbeam.params`), rotating frame, clamp at
+(r_o, 0), position R(s) = (r_o + x, y):
+
+    n_s + F = r_tt + eta r_t,        theta_ss - n_x sin(theta) + n_y cos(theta) = 0,
+    F_x = lam^2 (r_o + x) + lam_t y + 2 lam y_t
+    F_y = -lam_t (r_o + x) + lam^2 y - 2 lam x_t
+
+i.e. centrifugal lam^2 R, Euler -lam_t e_z x R and Coriolis -2 lam e_z x r_t, each derived from
+Eqs. (ForceW), (ForceE), (ForceC).  lam^2 (r_o + x) = C (1 - delta + delta x) and
+lam_t / delta = E, so this is Eqs. (EOM1-2) with the Euler sign of Eq. (ForceE): the y-load is
+-E (1 - delta + delta x) where Eq. (EOM2) prints +E; the x-load +delta E y agrees with Eq. (EOM1).
+(The printed pair is not a force perpendicular to R; ours is.  RMS values do not depend on it.)
+
+Grid: s_i = i ds, ds = 1/N.  Unknowns Theta = (theta_1 .. theta_{N-1}); theta_0 = 0 (clamp) and
+theta_N = theta_{N-1} (theta_s(1) = 0 by a backward difference, Eq. Neumann BC).
+
+* Positions, trapezoid rule (Eqs. numX, numY): x_i = ds/2 + (P cos Theta)_i, y_i = (P sin Theta)_i
+  at nodes i = 1..N.  P is the paper's L extended by the tip row x_N = x_{N-1} + ds cos theta_{N-1}.
+  (The printed "ds/2 + L c" is right: ds/2 is the clamp term cos theta_0 = 1 of every row.)
+* Tension, trapezoid rule from s_i to 1 with n(1) = 0 (Eq. NumT): n_i = (Q g)_i,
+  g = F - r_tt - eta r_t at nodes 1..N.  Q is the paper's U; we keep the tip node's own value
+  g_N instead of the printed last column of 3s (which sets g_N = g_{N-1}, first order at the tip).
+* Moment, central differences (Eq. Discrete_theta_ss): theta_ss = -K Theta with
+  K = tridiag(-1, 2, -1) / ds^2, last diagonal entry 1 / ds^2.  The printed K has 1/ds; with 1/ds^2
+  the units of K Theta and of the tension terms agree.
+
+Substitution gives Eq. (discretizedEq)
+
+    M Theta_tt + (eta M + 2 lam B) Theta_t + B Theta_t^2 + K Theta = f,
+    W = Q P,   M_ij = W_ij cos(theta_i - theta_j),   B_ij = W_ij sin(theta_i - theta_j),
+    f = -(sin Theta * Q F_x - cos Theta * Q F_y)  with the load parts of F only.
+
+Departures from the printed appendix, beyond those above: (i) the n_y integrand of Eq. (NumT) has
++2 I y_t where Eq. (EOM2) gives -2 I x_t (we use -2 lam x_t); (ii) the first bracket of
+Eq. (Disc_tension_x), 1 + (delta - 1) s - delta s^2/4, is not the integral of the centrifugal load:
+int_s^1 lam^2 (r_o + s') ds' = lam^2 [r_o (1 - s) + (1 - s^2)/2], which the discrete Q P sums
+reproduce exactly on the straight beam (tested); (iii) the velocity-squared matrix is
+W_ij sin(theta_i - theta_j), antisymmetric, where the printed S~ is symmetric; (iv) the gyroscopic
+term enters as 2 lam B Theta_t with the same B.  M is W "times" C~ element-wise, as printed.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.linalg import lu_factor, lu_solve
+
+from .params import Effects, RotbeamInputError
+
+MIN_NODES = 3
+
+
+def _check_N(N: int) -> int:
+    if isinstance(N, bool) or not isinstance(N, (int, np.integer)):
+        raise RotbeamInputError(f"numerics.N must be an integer, got {N!r}")
+    if N < MIN_NODES:
+        raise RotbeamInputError(f"numerics.N must be >= {MIN_NODES}, got {N}")
+    if N > 2000:
+        raise RotbeamInputError(f"numerics.N must be <= 2000, got {N}")
+    return int(N)
+
+
+@dataclass(frozen=True)
+class Grid:
+    """Operators of the N-interval grid (built once, reused for every evaluation)."""
+
+    N: int
+    ds: float
+    s: np.ndarray  #: nodes 1..N
+    P: np.ndarray  #: (N, N-1): positions at nodes 1..N from cos/sin of Theta
+    Q: np.ndarray  #: (N-1, N): int_{s_i}^1 of nodal values at 1..N
+    W: np.ndarray  #: (N-1, N-1) = Q P
+    K: np.ndarray  #: (N-1, N-1) bending stiffness
+    mid: int  #: index of the node used for y_m (or -1: interpolate)
+
+    @classmethod
+    def build(cls, N: int) -> Grid:
+        N = _check_N(N)
+        n = N - 1
+        ds = 1.0 / N
+        s = ds * np.arange(1, N + 1)
+        P = np.zeros((N, n))
+        for i in range(1, N):  # node i, angles 1..i
+            P[i - 1, : i - 1] = ds
+            P[i - 1, i - 1] = ds / 2
+        P[N - 1] = P[N - 2]
+        P[N - 1, n - 1] += ds  # tip: theta_N = theta_{N-1}
+        Q = np.zeros((n, N))
+        for i in range(1, N):  # tension at node i from nodes i..N
+            Q[i - 1, i - 1] = ds / 2
+            Q[i - 1, i : N - 1] = ds
+            Q[i - 1, N - 1] = ds / 2
+        K = (2.0 * np.eye(n) - np.eye(n, k=1) - np.eye(n, k=-1)) / ds**2
+        K[-1, -1] = 1.0 / ds**2
+        mid = N // 2 - 1 if N % 2 == 0 else -1
+        return cls(N=N, ds=ds, s=s, P=P, Q=Q, W=Q @ P, K=K, mid=mid)
+
+    def positions(self, theta: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """x, y at nodes 1..N (relative to the clamp); theta has shape (N-1,) or (N-1, m)."""
+        x = self.ds / 2 + self.P @ np.cos(theta)
+        y = self.P @ np.sin(theta)
+        return x, y
+
+    def midspan(self, theta: np.ndarray) -> np.ndarray:
+        """y(s = 1/2) from Theta of shape (N-1,) or (N-1, m) (linear interpolation for odd N)."""
+        _, y = self.positions(theta)
+        if self.mid >= 0:
+            return y[self.mid]
+        i = self.N // 2  # node i at s_i < 1/2 < s_{i+1}: rows i-1, i of y
+        w = 0.5 * self.N - i
+        return (1 - w) * y[i - 1] + w * y[i]
+
+    def full_shape(self, theta: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """s, x, y at all nodes 0..N (clamp included) for one Theta."""
+        x, y = self.positions(theta)
+        return (
+            np.concatenate([[0.0], self.s]),
+            np.concatenate([[0.0], x]),
+            np.concatenate([[0.0], y]),
+        )
+
+
+class DiscreteElastica:
+    """Right-hand side, Jacobians and static residual of the discrete model on one grid."""
+
+    def __init__(self, N: int, hub_ratio: float, eta: float, effects: Effects | None = None):
+        self.grid = Grid.build(N)
+        self.n = self.grid.N - 1
+        self.hub_ratio = float(hub_ratio)
+        self.effects = effects if effects is not None else Effects()
+        self.eta = float(eta) if self.effects.damping else 0.0
+
+    # --- loads ------------------------------------------------------------------------------
+    def _loads(self, c, s, lam, lam_dot):
+        """Nodal load parts of F_x, F_y (nodes 1..N) and nodal x, y."""
+        g = self.grid
+        x = g.ds / 2 + g.P @ c
+        y = g.P @ s
+        fx = np.zeros_like(x)
+        fy = np.zeros_like(y)
+        ef = self.effects
+        if ef.centrifugal:
+            lam2 = lam * lam
+            fx = fx + lam2 * (self.hub_ratio + x)
+            if ef.softening:
+                fy = fy + lam2 * y
+        if ef.euler:
+            fx = fx + lam_dot * y
+            fy = fy - lam_dot * (self.hub_ratio + x)
+        return fx, fy
+
+    def load_torque(self, theta: np.ndarray, lam: float, lam_dot: float) -> np.ndarray:
+        """L(Theta) = sin Theta * Q F_x - cos Theta * Q F_y (so that f = -L)."""
+        c, s = np.cos(theta), np.sin(theta)
+        fx, fy = self._loads(c, s, lam, lam_dot)
+        Q = self.grid.Q
+        return s * (Q @ fx) - c * (Q @ fy)
+
+    def load_torque_jacobian(self, theta: np.ndarray, lam: float, lam_dot: float) -> np.ndarray:
+        """dL/dTheta, exact."""
+        g = self.grid
+        c, s = np.cos(theta), np.sin(theta)
+        fx, fy = self._loads(c, s, lam, lam_dot)
+        nx, ny = g.Q @ fx, g.Q @ fy
+        J = np.diag(c * nx + s * ny)
+        ef = self.effects
+        W = g.W
+        # d(F_x)/dTheta = P (-lam^2 S + lam_dot C),  d(F_y)/dTheta = P (lam_dot S + sl lam^2 C)
+        ax = np.zeros(self.n)
+        bx = np.zeros(self.n)
+        ay = np.zeros(self.n)
+        by = np.zeros(self.n)
+        if ef.centrifugal:
+            ax = ax - lam * lam * s
+            if ef.softening:
+                by = by + lam * lam * c
+        if ef.euler:
+            bx = bx + lam_dot * c
+            ay = ay + lam_dot * s
+        # S W diag(ax + bx) - C W diag(ay + by)
+        J += s[:, None] * W * (ax + bx)[None, :] - c[:, None] * W * (ay + by)[None, :]
+        return J
+
+    # --- static problem ---------------------------------------------------------------------
+    def static_residual(self, theta: np.ndarray, lam: float, lam_dot: float) -> np.ndarray:
+        return self.grid.K @ theta + self.load_torque(theta, lam, lam_dot)
+
+    def static_jacobian(self, theta: np.ndarray, lam: float, lam_dot: float) -> np.ndarray:
+        return self.grid.K + self.load_torque_jacobian(theta, lam, lam_dot)
+
+    # --- dynamics ---------------------------------------------------------------------------
+    def mass_and_gyro(self, theta: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        c, s = np.cos(theta), np.sin(theta)
+        W = self.grid.W
+        M = (c[:, None] * W) * c[None, :] + (s[:, None] * W) * s[None, :]
+        B = (s[:, None] * W) * c[None, :] - (c[:, None] * W) * s[None, :]
+        return M, B
+
+    def acceleration(self, theta, theta_t, lam, lam_dot):
+        """Theta_tt from Eq. (discretizedEq); also returns the LU of M for Jacobians."""
+        M, B = self.mass_and_gyro(theta)
+        rhs = -self.grid.K @ theta - self.load_torque(theta, lam, lam_dot) - B @ (theta_t**2)
+        if self.effects.coriolis:
+            rhs -= 2.0 * lam * (B @ theta_t)
+        lu = lu_factor(M, check_finite=False)
+        acc = lu_solve(lu, rhs, check_finite=False) - self.eta * theta_t
+        return acc, lu, B
+
+    def first_order_jacobian(self, theta, theta_t, lam, lam_dot) -> np.ndarray:
+        """Exact Jacobian of (Theta_t, Theta_tt) w.r.t. (Theta, Theta_t).
+
+        With M a = r, r = -K Theta - L(Theta) - B v, v = Theta_t^2 (+ 2 lam Theta_t):
+        d(M a)/dTheta = B diag(a) - diag(B a),  d(B v)/dTheta = diag(M v) - M diag(v).
+        """
+        n = self.n
+        M, B = self.mass_and_gyro(theta)
+        v = theta_t**2
+        if self.effects.coriolis:
+            v = v + 2.0 * lam * theta_t
+        rhs = -self.grid.K @ theta - self.load_torque(theta, lam, lam_dot) - B @ v
+        lu = lu_factor(M, check_finite=False)
+        a0 = lu_solve(lu, rhs, check_finite=False)
+        dr = -self.static_jacobian(theta, lam, lam_dot) + M * v[None, :] - B * a0[None, :]
+        dr[np.diag_indices(n)] += -(M @ v) + B @ a0
+        J = np.zeros((2 * n, 2 * n))
+        J[:n, n:] = np.eye(n)
+        J[n:, :n] = lu_solve(lu, dr, check_finite=False)
+        dv = 2.0 * B * theta_t[None, :]
+        if self.effects.coriolis:
+            dv = dv + 2.0 * lam * B
+        J[n:, n:] = -lu_solve(lu, dv, check_finite=False) - self.eta * np.eye(n)
+        return J
+
+    def tension(self, theta, theta_t, theta_tt, lam, lam_dot) -> tuple[np.ndarray, np.ndarray]:
+        """Internal force n_x, n_y at nodes 1..N-1 (used in tests and for diagnostics)."""
+        g = self.grid
+        c, s = np.cos(theta), np.sin(theta)
+        fx, fy = self._loads(c, s, lam, lam_dot)
+        xt = -g.P @ (s * theta_t)
+        yt = g.P @ (c * theta_t)
+        xtt = -g.P @ (s * theta_tt + c * theta_t**2)
+        ytt = g.P @ (c * theta_tt - s * theta_t**2)
+        gx = fx - xtt - self.eta * xt
+        gy = fy - ytt - self.eta * yt
+        if self.effects.coriolis:
+            gx = gx + 2 * lam * yt
+            gy = gy - 2 * lam * xt
+        return g.Q @ gx, g.Q @ gy

@@ -1,0 +1,211 @@
+"""Time stepping of the discrete model to its periodic steady state.
+
+Contract (in the spirit of scipy.integrate): `steady_state` never raises for a solver failure; it
+returns a `SteadyState` whose `converged` says whether a steady state was reached, `status` and
+`message` say why not, and the samples are what the integration actually saw.
+
+Steady-state criterion.  Every mode of the linearised model decays as exp(-eta tau / 2) (the
+damping matrix is eta M, mass-proportional).  Let Z_k be the state after k drive periods P and
+d_k = |Z_k - Z_{k-1}| (max-norm, velocities divided by max(omega, 1)).  For a decaying transient
+the distance still to go obeys |Z_k - Z_inf| <= d_k rho / (1 - rho) with rho = exp(-eta P / 2).
+We stop when that bound is below `ss_tol` times the size of the response (max |Theta| over the
+last period), then integrate `rms_periods` more periods and sample them uniformly for the RMS.
+Without damping no steady state is reached: we say so and return the last periods seen.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Callable
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy.integrate import solve_ivp
+
+from .elastica import DiscreteElastica
+from .params import Dimensionless, RotbeamInputError
+from .modes import linear_forced_response
+from .quasistatic import quasistatic_series
+
+METHODS = ("Radau", "BDF", "LSODA")
+STARTS = ("linear", "quasistatic", "rest")
+
+
+@dataclass(frozen=True)
+class Numerics:
+    """Everything numerical that changes a result."""
+
+    N: int = 40  #: grid intervals
+    method: str = "Radau"  #: scipy solve_ivp method
+    rtol: float = 1e-5  #: relative tolerance of the time stepper
+    ss_tol: float = 1e-3  #: steady-state tolerance (relative remaining transient)
+    rms_periods: int = 2  #: whole drive periods in the RMS window
+    samples_per_period: int = 64
+    max_periods: int = 2000  #: give up after this many periods
+    max_tau: float = 2000.0  #: ... or after this much dimensionless time
+    start: str = "linear"  #: initial state: "linear", "quasistatic" or "rest"
+
+    def __post_init__(self) -> None:
+        from .elastica import _check_N
+
+        _check_N(self.N)
+        if self.method not in METHODS:
+            raise RotbeamInputError(f"numerics.method must be one of {METHODS}, got {self.method!r}")
+        if self.start not in STARTS:
+            raise RotbeamInputError(f"numerics.start must be one of {STARTS}, got {self.start!r}")
+        for name, lo, hi in (("rtol", 1e-13, 1e-1), ("ss_tol", 1e-10, 0.5)):
+            v = getattr(self, name)
+            if not isinstance(v, (int, float)) or not (lo <= v <= hi):
+                raise RotbeamInputError(f"numerics.{name} must be in [{lo}, {hi}], got {v!r}")
+        for name, lo in (("rms_periods", 1), ("samples_per_period", 8), ("max_periods", 2)):
+            v = getattr(self, name)
+            if isinstance(v, bool) or not isinstance(v, int) or v < lo:
+                raise RotbeamInputError(f"numerics.{name} must be an integer >= {lo}, got {v!r}")
+        if not isinstance(self.max_tau, (int, float)) or not (self.max_tau > 0):
+            raise RotbeamInputError(f"numerics.max_tau must be > 0, got {self.max_tau!r}")
+
+
+@dataclass
+class SteadyState:
+    """Result of `steady_state`: samples over the RMS window and how we got there."""
+
+    tau: np.ndarray  #: sample instants (whole periods, endpoint excluded)
+    theta: np.ndarray  #: (N-1, m) angles at the samples
+    y_m: np.ndarray  #: midspan deflection at the samples
+    converged: bool
+    status: int  #: 0 steady, 1 no steady state within budget, -1 integrator failure
+    message: str
+    periods: int  #: drive periods integrated in all
+    transient: float  #: last bound on the remaining relative transient
+    nfev: int = 0
+    njev: int = 0
+    seconds: float = 0.0
+    history: list[float] = field(default_factory=list)  #: transient bound per period
+
+
+def period_samples(dl: Dimensionless, k0: int, periods: int, m: int) -> np.ndarray:
+    P = dl.period
+    return (k0 + np.arange(periods * m) / m) * P
+
+
+def initial_state(model: DiscreteElastica, dl: Dimensionless, start: str) -> np.ndarray:
+    n = model.n
+    if start == "rest":
+        return np.zeros(2 * n)
+    if start == "linear":
+        amp, _ = linear_forced_response(dl, model.grid.N)
+        return np.concatenate([amp.real, -dl.omega * amp.imag])
+    h = dl.period * 1e-4
+    th = quasistatic_series(model, dl, np.array([-h, 0.0, h]))
+    return np.concatenate([th[:, 1], (th[:, 2] - th[:, 0]) / (2 * h)])
+
+
+def steady_state(
+    dl: Dimensionless,
+    numerics: Numerics | None = None,
+    progress: Callable[[int, float], None] | None = None,
+    response_scale: float | None = None,
+) -> SteadyState:
+    """Integrate from `numerics.start` until the periodic steady state, then sample it."""
+    num = numerics if numerics is not None else Numerics()
+    t0 = time.perf_counter()
+    model = DiscreteElastica(num.N, dl.hub_ratio, dl.eta, dl.effects)
+    n = model.n
+    P = dl.period
+    m = num.samples_per_period
+    z = initial_state(model, dl, num.start)
+
+    # scale for absolute tolerances: the quasi-static response size if known
+    scale = response_scale if response_scale else float(np.max(np.abs(z[:n])))
+    if not scale or not math.isfinite(scale):
+        scale = abs(dl.alpha * dl.omega) * (dl.hub_ratio + 1.0) / 8.0 or 1.0
+    wref = max(dl.omega, 1.0)
+    atol = np.concatenate([np.full(n, num.rtol * scale), np.full(n, num.rtol * scale * wref)])
+
+    nfev = njev = 0
+
+    def rhs(tau, z):
+        acc, _, _ = model.acceleration(z[:n], z[n:], dl.lam(tau), dl.lam_dot(tau))
+        return np.concatenate([z[n:], acc])
+
+    def jac(tau, z):
+        return model.first_order_jacobian(z[:n], z[n:], dl.lam(tau), dl.lam_dot(tau))
+
+    def run(tau_a, tau_b, z_a, t_eval):
+        nonlocal nfev, njev
+        sol = solve_ivp(
+            rhs, (tau_a, tau_b), z_a, method=num.method, rtol=num.rtol, atol=atol,
+            jac=jac, t_eval=t_eval,
+        )  # fmt: skip
+        nfev += sol.nfev
+        njev += sol.njev
+        return sol
+
+    rho = math.exp(-model.eta * P / 2.0)
+    history: list[float] = []
+    k = 0
+    converged = False
+    status, message = 1, ""
+    bound = math.inf
+    max_periods = min(num.max_periods, max(2, int(num.max_tau / P)))
+    while k < max_periods:
+        sol = run(k * P, (k + 1) * P, z, None)
+        if sol.status < 0 or not np.all(np.isfinite(sol.y[:, -1])):
+            status, message = -1, f"integrator failed in period {k + 1}: {sol.message}"
+            break
+        z_new = sol.y[:, -1]
+        k += 1
+        size = max(float(np.max(np.abs(sol.y[:n]))), 1e-300)
+        d = max(
+            float(np.max(np.abs(z_new[:n] - z[:n]))),
+            float(np.max(np.abs(z_new[n:] - z[n:]))) / wref,
+        )
+        z = z_new
+        if d == 0.0:
+            bound = 0.0
+        elif rho < 1.0:
+            bound = d * rho / (1.0 - rho) / size
+        else:
+            bound = math.inf
+        history.append(bound)
+        if progress is not None:
+            progress(k, bound)
+        if k >= 2 and bound <= num.ss_tol:
+            converged, status, message = True, 0, f"steady after {k} periods"
+            break
+    else:
+        message = (
+            f"no steady state within {max_periods} periods (tau={k * P:.4g}); "
+            f"remaining transient bound {bound:.3g} > ss_tol {num.ss_tol:g}"
+            + ("; undamped model has no steady state" if model.eta == 0 else "")
+        )
+
+    if status == -1:
+        taus = np.array([k * P])
+        theta = z[:n, None]
+    else:
+        taus = period_samples(dl, k, num.rms_periods, m)
+        t_end = (k + num.rms_periods) * P
+        sol = run(k * P, t_end, z, taus)
+        if sol.status < 0 or sol.y.shape[1] != taus.size or not np.all(np.isfinite(sol.y)):
+            status, converged = -1, False
+            message = f"integrator failed in the RMS window: {sol.message}"
+            taus = sol.t
+        theta = sol.y[:n]
+        k += num.rms_periods
+    y_m = model.grid.midspan(theta)
+    return SteadyState(
+        tau=taus,
+        theta=theta,
+        y_m=np.atleast_1d(y_m),
+        converged=converged,
+        status=status,
+        message=message,
+        periods=k,
+        transient=bound,
+        nfev=nfev,
+        njev=njev,
+        seconds=time.perf_counter() - t0,
+        history=history,
+    )

@@ -1,0 +1,300 @@
+"""Beam, drive and the dimensionless groups of the rotating cantilever.
+
+Nondimensionalisation (used everywhere in the package; see README "Dimensionless groups"):
+lengths by the beam length L, forces by EI/L^2, time by T = sqrt(rho A L^4 / (E I)).
+With tau = t / T the dimensionless equations of motion have unit inertia, and the whole problem is
+fixed by five numbers:
+
+    hub_ratio r_o = R_o / L = 1/delta - 1       (clamp distance from the axis over L)
+    eta  = gamma L^2 / sqrt(rho A E I)          (viscous damping, Eq. eta of the paper)
+    lam(tau) = Omega(t) T = lam0 + alpha sin(omega tau)
+    lam0 = Omega_0 T,  alpha = a T,  omega = 2 pi f_d T
+
+The paper's groups map onto these as follows (G = rho A R L^3/(E I), in s^2, Sec. 6):
+
+    C(tau) = G Omega^2 = lam^2 / delta                       (Eq. centrifugal_number)
+    E(tau) = G dOmega/dt = (dlam/dtau) / delta               (Eq. euler_number without f_s, as
+                                                              Eq. max E num: E_max = G a 2 pi f_d)
+    I(tau) = Omega T = lam                                   (Eq. inertial_number without 1/2pi)
+
+The printed Eqs. (euler_number) and (inertial_number) carry a factor f_s that would make them
+dimensional (Euler) or 2 pi smaller (inertial); with time scaled by T the factors above are the ones
+that make the printed Eqs. (EOM1-2) hold with unit inertia.  The centrifugal load C (1 - delta +
+delta x) equals lam^2 (r_o + x), which is the form the code uses (no 1/delta for tiny beams).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import asdict, dataclass, field, fields
+
+#: Root of 1 + cos(b) cosh(b) = 0 (first cantilever mode).  The paper rounds it to 1.875.
+BETA1 = 1.8751040687119611
+
+
+class RotbeamInputError(ValueError):
+    """A user-supplied value is outside its allowed range; the message names value and range."""
+
+
+def _check_finite(name: str, value: object) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        raise RotbeamInputError(f"{name} must be a number, got {value!r} ({type(value).__name__})")
+    value = float(value)
+    if not math.isfinite(value):
+        raise RotbeamInputError(f"{name} must be finite, got {value!r}")
+    return value
+
+
+def _check_positive(name: str, value: object) -> float:
+    value = _check_finite(name, value)
+    if value <= 0:
+        raise RotbeamInputError(f"{name} must be > 0, got {value!r}")
+    return value
+
+
+def _check_nonnegative(name: str, value: object) -> float:
+    value = _check_finite(name, value)
+    if value < 0:
+        raise RotbeamInputError(f"{name} must be >= 0, got {value!r}")
+    return value
+
+
+@dataclass(frozen=True)
+class Beam:
+    """Rectangular elastic beam clamped on the disk (SI units).
+
+    Defaults are the paper's reference beam (Table 1) with R = 0.155 m (distance from the axis to
+    the undeformed tip; not printed in the paper, inferred from the C and E ranges of Sec. 5) and
+    gamma = 0.039 N s/m^2 (App. B).
+    """
+
+    L: float = 0.040  #: length [m]
+    h: float = 0.002  #: thickness (bending direction) [m]
+    b: float = 0.010  #: width [m]
+    E: float = 1.22e6  #: Young's modulus [Pa]
+    rho: float = 1170.2  #: density [kg/m^3]
+    R: float = 0.155  #: axis to undeformed tip [m]; the clamp sits at R_o = R - L
+    gamma: float = 0.039  #: viscous damping per unit length [N s / m^2]
+
+    def __post_init__(self) -> None:
+        for name in ("L", "h", "b", "E", "rho", "R"):
+            object.__setattr__(self, name, _check_positive(f"beam.{name}", getattr(self, name)))
+        object.__setattr__(self, "gamma", _check_nonnegative("beam.gamma", self.gamma))
+        if self.h >= self.L:
+            raise RotbeamInputError(
+                f"beam.h must be < beam.L (a slender beam), got h={self.h!r} m, L={self.L!r} m"
+            )
+        if self.R <= self.L:
+            raise RotbeamInputError(
+                f"beam.R must be > beam.L (clamp off the axis, R_o = R - L > 0), "
+                f"got R={self.R!r} m, L={self.L!r} m"
+            )
+
+    # --- section and scales -------------------------------------------------------------
+    @property
+    def A(self) -> float:
+        """Cross-section area b h [m^2]."""
+        return self.b * self.h
+
+    @property
+    def I(self) -> float:  # noqa: E743 - the paper's symbol
+        """Second moment of area b h^3 / 12 [m^4]."""
+        return self.b * self.h**3 / 12.0
+
+    @property
+    def EI(self) -> float:
+        return self.E * self.I
+
+    @property
+    def rhoA(self) -> float:
+        return self.rho * self.A
+
+    @property
+    def T(self) -> float:
+        """Time scale sqrt(rho A L^4 / (E I)) [s]."""
+        return math.sqrt(self.rhoA * self.L**4 / self.EI)
+
+    @property
+    def f_s(self) -> float:
+        """Bending frequency scale 1/(2 pi T) [Hz]."""
+        return 1.0 / (2.0 * math.pi * self.T)
+
+    @property
+    def f_n(self) -> float:
+        """First natural frequency beta_1^2 f_s of the non-rotating cantilever [Hz]."""
+        return BETA1**2 * self.f_s
+
+    @property
+    def R_o(self) -> float:
+        """Clamp distance from the axis [m]."""
+        return self.R - self.L
+
+    @property
+    def G(self) -> float:
+        """G = rho A R L^3 / (E I) [s^2]; C = G Omega^2, E = G dOmega/dt."""
+        return self.rhoA * self.R * self.L**3 / self.EI
+
+    @property
+    def delta(self) -> float:
+        return self.L / self.R
+
+    @property
+    def hub_ratio(self) -> float:
+        """R_o / L = 1/delta - 1."""
+        return self.R_o / self.L
+
+    @property
+    def eta(self) -> float:
+        """Dimensionless damping gamma L^2 / sqrt(rho A E I)."""
+        return self.gamma * self.L**2 / math.sqrt(self.rhoA * self.EI)
+
+    @property
+    def zeta(self) -> float:
+        """Damping ratio of the first mode, eta / (2 beta_1^2) (Table systems, cantilever row)."""
+        return self.eta / (2.0 * BETA1**2)
+
+    def derived(self) -> dict[str, float]:
+        """Every derived group, for tables and JSON output."""
+        return {
+            "A": self.A,
+            "I": self.I,
+            "T": self.T,
+            "f_s": self.f_s,
+            "f_n": self.f_n,
+            "G": self.G,
+            "delta": self.delta,
+            "hub_ratio": self.hub_ratio,
+            "eta": self.eta,
+            "zeta": self.zeta,
+        }
+
+
+@dataclass(frozen=True)
+class Drive:
+    """Harmonic angular velocity Omega(t) = Omega_0 + a sin(2 pi f_d t) [rad/s]."""
+
+    omega0: float = 5.0  #: mean angular velocity Omega_0 [rad/s]
+    amplitude: float = 1.0  #: velocity amplitude a [rad/s]
+    f_d: float = 7.0  #: drive frequency [Hz]
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "omega0", _check_finite("drive.omega0", self.omega0))
+        object.__setattr__(self, "amplitude", _check_nonnegative("drive.amplitude", self.amplitude))
+        object.__setattr__(self, "f_d", _check_positive("drive.f_d", self.f_d))
+
+    def omega(self, t: float) -> float:
+        return self.omega0 + self.amplitude * math.sin(2.0 * math.pi * self.f_d * t)
+
+    def omega_dot(self, t: float) -> float:
+        return 2.0 * math.pi * self.f_d * self.amplitude * math.cos(2.0 * math.pi * self.f_d * t)
+
+
+@dataclass(frozen=True)
+class Effects:
+    """Which loads enter the model.  Terms that are off are not computed.
+
+    Defaults follow the paper: Coriolis off (Sec. 2), everything else on.  `softening` is the
+    in-plane centrifugal softening, the delta C y term of Eq. (EOM2); it needs `centrifugal`.
+    """
+
+    centrifugal: bool = True
+    softening: bool = True
+    euler: bool = True
+    coriolis: bool = False
+    damping: bool = True
+
+    def __post_init__(self) -> None:
+        for f in fields(self):
+            v = getattr(self, f.name)
+            if not isinstance(v, bool):
+                raise RotbeamInputError(f"effects.{f.name} must be true or false, got {v!r}")
+
+    @classmethod
+    def from_list(cls, names: str | list[str]) -> Effects:
+        """Effects switched on by name, e.g. "centrifugal,euler,damping" ("all", "none" allowed)."""
+        if isinstance(names, str):
+            names = [n.strip() for n in names.split(",") if n.strip()]
+        allowed = [f.name for f in fields(cls)]
+        if names == ["all"]:
+            return cls(**{n: True for n in allowed})
+        if names == ["none"]:
+            return cls(**{n: False for n in allowed})
+        bad = [n for n in names if n not in allowed]
+        if bad:
+            raise RotbeamInputError(
+                f"unknown effect(s) {bad}; allowed: {', '.join(allowed)} (or 'all', 'none')"
+            )
+        return cls(**{n: (n in names) for n in allowed})
+
+    def active(self) -> list[str]:
+        return [k for k, v in asdict(self).items() if v]
+
+
+@dataclass(frozen=True)
+class Dimensionless:
+    """The dimensionless problem: everything the discrete model needs, nothing else.
+
+    Two scenes with equal `Dimensionless` are the same numerical problem, whatever their size.
+    """
+
+    hub_ratio: float  #: r_o = R_o / L
+    eta: float  #: damping
+    lam0: float  #: Omega_0 T
+    alpha: float  #: a T
+    omega: float  #: 2 pi f_d T
+    effects: Effects = field(default_factory=Effects)
+
+    def __post_init__(self) -> None:
+        _check_nonnegative("hub_ratio", self.hub_ratio)
+        _check_nonnegative("eta", self.eta)
+        _check_finite("lam0", self.lam0)
+        _check_nonnegative("alpha", self.alpha)
+        _check_positive("omega", self.omega)
+
+    @classmethod
+    def from_physical(cls, beam: Beam, drive: Drive, effects: Effects | None = None) -> Dimensionless:
+        T = beam.T
+        return cls(
+            hub_ratio=beam.hub_ratio,
+            eta=beam.eta,
+            lam0=drive.omega0 * T,
+            alpha=drive.amplitude * T,
+            omega=2.0 * math.pi * drive.f_d * T,
+            effects=effects if effects is not None else Effects(),
+        )
+
+    @property
+    def period(self) -> float:
+        """Drive period in units of T."""
+        return 2.0 * math.pi / self.omega
+
+    def lam(self, tau: float) -> float:
+        return self.lam0 + self.alpha * math.sin(self.omega * tau)
+
+    def lam_dot(self, tau: float) -> float:
+        return self.alpha * self.omega * math.cos(self.omega * tau)
+
+
+def drive_groups(beam: Beam, drive: Drive) -> dict[str, float]:
+    """Maximal centrifugal and Euler numbers (Eqs. max C num, max E num) and f_d / f_n."""
+    G = beam.G
+    return {
+        "C_max": G * (drive.omega0 + drive.amplitude) ** 2,
+        "E_max": G * drive.amplitude * 2.0 * math.pi * drive.f_d,
+        "E_n": G * drive.amplitude * 2.0 * math.pi * beam.f_n,
+        "I_max": (abs(drive.omega0) + drive.amplitude) * beam.T,
+        "fd_over_fn": drive.f_d / beam.f_n,
+    }
+
+
+def omega0_for_cmax(beam: Beam, c_max: float, amplitude: float = 1.0) -> float:
+    """Omega_0 that gives the maximal centrifugal number C_max (inverse of Eq. max C num)."""
+    c_max = _check_positive("C_max", c_max)
+    return math.sqrt(c_max / beam.G) - amplitude
+
+
+def fd_for_emax(beam: Beam, e_max: float, amplitude: float = 1.0) -> float:
+    """Drive frequency that gives the maximal Euler number E_max (inverse of Eq. max E num)."""
+    e_max = _check_positive("E_max", e_max)
+    amplitude = _check_positive("drive.amplitude", amplitude)
+    return e_max / (beam.G * amplitude * 2.0 * math.pi)
