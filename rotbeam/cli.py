@@ -67,7 +67,9 @@ def build_parser() -> argparse.ArgumentParser:
     m.add_argument("--no-softening", action="store_true", help="flapwise (no in-plane softening)")
     m.add_argument("--dimensionless", action="store_true", help="answer for the unit beam")
     m.add_argument("--hub-ratio", type=_finite, default=0.0, help="R_o / L (with --dimensionless)")
-    m.add_argument("--lambda", dest="lam", type=_finite, default=0.0, help="Omega T (dimensionless)")
+    m.add_argument(
+        "--lambda", dest="lam", type=_finite, default=0.0, help="Omega T (dimensionless)"
+    )
     m.add_argument("--json", action="store_true")
     return p
 

@@ -24,12 +24,13 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 from .elastica import DiscreteElastica
-from .params import Dimensionless, RotbeamInputError
 from .modes import linear_forced_response
+from .params import Dimensionless, RotbeamInputError
+from .periodic import solve_periodic_adaptive
 from .quasistatic import quasistatic_series
 
 METHODS = ("Radau", "BDF", "LSODA")
-STARTS = ("linear", "quasistatic", "rest")
+STARTS = ("periodic", "linear", "quasistatic", "rest")
 
 
 @dataclass(frozen=True)
@@ -44,14 +45,17 @@ class Numerics:
     samples_per_period: int = 64
     max_periods: int = 2000  #: give up after this many periods
     max_tau: float = 2000.0  #: ... or after this much dimensionless time
-    start: str = "linear"  #: initial state: "linear", "quasistatic" or "rest"
+    start: str = "periodic"  #: initial state: "periodic", "linear", "quasistatic" or "rest"
+    tail_tol: float = 1e-3  #: harmonic tail of the periodic (collocation) start
 
     def __post_init__(self) -> None:
         from .elastica import _check_N
 
         _check_N(self.N)
         if self.method not in METHODS:
-            raise RotbeamInputError(f"numerics.method must be one of {METHODS}, got {self.method!r}")
+            raise RotbeamInputError(
+                f"numerics.method must be one of {METHODS}, got {self.method!r}"
+            )
         if self.start not in STARTS:
             raise RotbeamInputError(f"numerics.start must be one of {STARTS}, got {self.start!r}")
         for name, lo, hi in (("rtol", 1e-13, 1e-1), ("ss_tol", 1e-10, 0.5)):
@@ -89,10 +93,17 @@ def period_samples(dl: Dimensionless, k0: int, periods: int, m: int) -> np.ndarr
     return (k0 + np.arange(periods * m) / m) * P
 
 
-def initial_state(model: DiscreteElastica, dl: Dimensionless, start: str) -> np.ndarray:
+def initial_state(
+    model: DiscreteElastica, dl: Dimensionless, start: str, tail_tol: float = 1e-5
+) -> np.ndarray:
     n = model.n
     if start == "rest":
         return np.zeros(2 * n)
+    if start == "periodic":
+        res = solve_periodic_adaptive(dl, model.grid.N, tail_tol=tail_tol)
+        if res.converged:
+            return np.concatenate([res.theta[:, 0], res.theta_t[:, 0]])
+        start = "linear"  # fall back; the time stepping still decides
     if start == "linear":
         amp, _ = linear_forced_response(dl, model.grid.N)
         return np.concatenate([amp.real, -dl.omega * amp.imag])
@@ -114,14 +125,18 @@ def steady_state(
     n = model.n
     P = dl.period
     m = num.samples_per_period
-    z = initial_state(model, dl, num.start)
+    z = initial_state(model, dl, num.start, num.tail_tol)
 
     # scale for absolute tolerances: the quasi-static response size if known
     scale = response_scale if response_scale else float(np.max(np.abs(z[:n])))
     if not scale or not math.isfinite(scale):
         scale = abs(dl.alpha * dl.omega) * (dl.hub_ratio + 1.0) / 8.0 or 1.0
     wref = max(dl.omega, 1.0)
-    atol = np.concatenate([np.full(n, num.rtol * scale), np.full(n, num.rtol * scale * wref)])
+    rho = math.exp(-model.eta * P / 2.0)
+    # the per-period integration error must stay below what the transient bound can tell apart
+    rtol = min(num.rtol, 0.1 * num.ss_tol * (1.0 - rho)) if rho < 1.0 else num.rtol
+    rtol = max(rtol, 1e-12)
+    atol = np.concatenate([np.full(n, rtol * scale), np.full(n, rtol * scale * wref)])
 
     nfev = njev = 0
 
@@ -135,14 +150,13 @@ def steady_state(
     def run(tau_a, tau_b, z_a, t_eval):
         nonlocal nfev, njev
         sol = solve_ivp(
-            rhs, (tau_a, tau_b), z_a, method=num.method, rtol=num.rtol, atol=atol,
+            rhs, (tau_a, tau_b), z_a, method=num.method, rtol=rtol, atol=atol,
             jac=jac, t_eval=t_eval,
         )  # fmt: skip
         nfev += sol.nfev
         njev += sol.njev
         return sol
 
-    rho = math.exp(-model.eta * P / 2.0)
     history: list[float] = []
     k = 0
     converged = False

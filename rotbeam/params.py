@@ -252,7 +252,9 @@ class Dimensionless:
         _check_positive("omega", self.omega)
 
     @classmethod
-    def from_physical(cls, beam: Beam, drive: Drive, effects: Effects | None = None) -> Dimensionless:
+    def from_physical(
+        cls, beam: Beam, drive: Drive, effects: Effects | None = None
+    ) -> Dimensionless:
         T = beam.T
         return cls(
             hub_ratio=beam.hub_ratio,

@@ -7,6 +7,7 @@ the fields of `Beam`, `Drive`, `Effects` and `Numerics`; unknown keys are errors
 from __future__ import annotations
 
 import math
+import re
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, fields
@@ -21,6 +22,30 @@ from .elastica import DiscreteElastica
 from .integrate import Numerics, SteadyState, steady_state
 from .params import Beam, Dimensionless, Drive, Effects, RotbeamInputError, drive_groups
 from .quasistatic import quasistatic_series
+
+
+class _Loader(yaml.SafeLoader):
+    """SafeLoader that also reads 1e6 and 2.0e6 as floats (YAML 1.1 wants 1.0e+6)."""
+
+
+_Loader.add_implicit_resolver(
+    "tag:yaml.org,2002:float",
+    re.compile(
+        r"""^(?:[-+]?(?:[0-9][0-9_]*)\.[0-9_]*(?:[eE][-+]?[0-9]+)?
+        |[-+]?(?:[0-9][0-9_]*)(?:[eE][-+]?[0-9]+)
+        |\.[0-9_]+(?:[eE][-+]?[0-9]+)?
+        |[-+]?\.(?:inf|Inf|INF)
+        |\.(?:nan|NaN|NAN))$""",
+        re.X,
+    ),
+    list("-+0123456789."),
+)
+
+
+def load_yaml(text: str):
+    """YAML with scientific notation read as numbers."""
+    return yaml.load(text, Loader=_Loader)
+
 
 SECTIONS = {"beam": Beam, "drive": Drive, "effects": Effects, "numerics": Numerics}
 
@@ -70,7 +95,7 @@ def load_scene_file(path: str | Path) -> dict[str, Any]:
     if not path.is_file():
         raise RotbeamInputError(f"scene file {str(path)!r} does not exist")
     try:
-        data = yaml.safe_load(path.read_text())
+        data = load_yaml(path.read_text())
     except yaml.YAMLError as exc:
         raise RotbeamInputError(f"scene file {str(path)!r} is not valid YAML: {exc}") from None
     if data is None:
@@ -134,7 +159,9 @@ class SceneResult:
         }
 
 
-def quasistatic_midspan(dl: Dimensionless, N: int, taus: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def quasistatic_midspan(
+    dl: Dimensionless, N: int, taus: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
     model = DiscreteElastica(N, dl.hub_ratio, dl.eta, dl.effects)
     theta = quasistatic_series(model, dl, taus)
     return theta, np.atleast_1d(model.grid.midspan(theta))

@@ -1,0 +1,72 @@
+"""The console script: JSON output, time series, one-line errors with exit status 2."""
+
+import json
+import subprocess
+import sys
+
+import pandas as pd
+import pytest
+
+
+def run(*args):
+    return subprocess.run(
+        [sys.executable, "-m", "rotbeam.cli", *args], capture_output=True, text=True, timeout=300
+    )
+
+
+def test_simulate_json_and_out(tmp_path):
+    out = tmp_path / "series.csv"
+    p = run("simulate", "--omega0", "5", "--fd", "2", "--N", "16", "--json", "--out", str(out))
+    assert p.returncode == 0, p.stderr
+    d = json.loads(p.stdout)
+    for key in ("rms_dynamic", "rms_quasistatic", "delta_rms", "f_n_hz", "seconds"):
+        assert key in d
+    assert 0 < d["rms_quasistatic"] < d["rms_dynamic"] < 0.1
+    df = pd.read_csv(out)
+    assert {"tau", "y_m_dynamic", "y_m_quasistatic"} <= set(df.columns) and len(df) > 10
+
+
+def test_scene_file_with_flag_override(tmp_path):
+    scene = tmp_path / "s.yaml"
+    scene.write_text("beam: {E: 2.0e6}\ndrive: {omega0: 5, f_d: 40}\nnumerics: {N: 12}\n")
+    p = run("simulate", "--scene", str(scene), "--fd", "2", "--json")
+    assert p.returncode == 0, p.stderr
+    d = json.loads(p.stdout)
+    assert d["f_d"] == 2.0 and d["N"] == 12
+    assert d["f_n_hz"] == pytest.approx(6.5199 * (2.0 / 1.22) ** 0.5, rel=1e-4)
+
+
+@pytest.mark.parametrize(
+    "args, words",
+    [
+        (["simulate", "--omega0", "5", "--fd", "-2"], "drive.f_d"),
+        (["simulate", "--omega0", "5", "--fd", "nan"], "--fd"),
+        (["simulate", "--omega0", "5", "--fd", "2", "--N", "2"], "numerics.N"),
+        (["simulate", "--omega0", "5", "--fd", "2", "--R", "0.01"], "beam.R"),
+        (["simulate", "--omega0", "5", "--fd", "2", "--effects", "magic"], "magic"),
+        (["simulate", "--omega0", "5"], "--fd"),
+        (["simulate", "--scene", "/nonexistent.yaml"], "does not exist"),
+        (["modes", "--k", "0"], "--k"),
+        (["modes", "--dimensionless", "--hub-ratio", "-1"], "--hub-ratio"),
+    ],
+)
+def test_bad_input_is_one_line_exit_2(args, words):
+    p = run(*args)
+    assert p.returncode == 2
+    assert "Traceback" not in p.stderr
+    assert len(p.stderr.strip().splitlines()) == 1 and words in p.stderr
+
+
+def test_unknown_scene_key(tmp_path):
+    scene = tmp_path / "s.yaml"
+    scene.write_text("beam: {Young: 2.0e6}\n")
+    p = run("simulate", "--scene", str(scene), "--omega0", "1", "--fd", "1")
+    assert p.returncode == 2 and "Young" in p.stderr
+
+
+def test_modes_dimensionless_matches_beta1():
+    p = run("modes", "--dimensionless", "--lambda", "0", "--k", "2", "--N", "160", "--json")
+    assert p.returncode == 0
+    w = json.loads(p.stdout)["frequencies_dimensionless"]
+    assert w[0] == pytest.approx(1.8751040687**2, rel=1e-4)
+    assert w[1] == pytest.approx(4.6940911330**2, rel=1e-3)

@@ -1,0 +1,90 @@
+"""Dynamic steady state: convergence in N, the periodic solver, the reference beam's resonance."""
+
+import numpy as np
+import pytest
+from scipy.integrate import solve_ivp
+
+from rotbeam.criterion import rms
+from rotbeam.elastica import DiscreteElastica, Grid
+from rotbeam.integrate import Numerics, steady_state
+from rotbeam.modes import natural_frequencies_hz
+from rotbeam.params import Beam, Dimensionless, Drive
+from rotbeam.periodic import solve_periodic, solve_periodic_adaptive
+from rotbeam.scene import Scene, simulate
+
+BEAM = Beam()
+
+
+def dl_of(omega0, f_d, amplitude=1.0, beam=BEAM):
+    return Dimensionless.from_physical(beam, Drive(omega0, amplitude, f_d))
+
+
+def test_rms_converges_in_N_with_second_order():
+    """RMS(y_m) at Omega_0 = 5 rad/s, f_d = 2 Hz for N = 10, 20, 40, 80: measured order ~ 2."""
+    dl = dl_of(5.0, 2.0)
+    vals = []
+    for N in (10, 20, 40, 80):
+        res = solve_periodic(dl, N, M=17)
+        assert res.converged
+        vals.append(rms(Grid.build(N).midspan(res.theta)))
+    d = np.abs(np.diff(vals))
+    order = np.log2(d[:-1] / d[1:])
+    assert np.all((order > 1.7) & (order < 2.3)), (vals, order)
+
+
+def test_periodic_state_is_a_fixed_point_of_the_period_map():
+    dl = dl_of(10.0, 4.0)
+    res = solve_periodic(dl, 20, M=33)
+    assert res.converged and res.harmonic_tail < 1e-6
+    m = DiscreteElastica(20, dl.hub_ratio, dl.eta, dl.effects)
+    n = m.n
+
+    def rhs(t, z):
+        a, _, _ = m.acceleration(z[:n], z[n:], dl.lam(t), dl.lam_dot(t))
+        return np.concatenate([z[n:], a])
+
+    z0 = np.concatenate([res.theta[:, 0], res.theta_t[:, 0]])
+    scale = np.abs(z0).max()
+    atol = 1e-10 * scale * np.r_[np.ones(n), np.full(n, dl.omega)]
+    sol = solve_ivp(
+        rhs,
+        (0, dl.period),
+        z0,
+        method="Radau",
+        rtol=1e-10,
+        atol=atol,
+        jac=lambda t, z: m.first_order_jacobian(z[:n], z[n:], dl.lam(t), dl.lam_dot(t)),
+    )
+    assert sol.success
+    drift = np.max(np.abs(sol.y[:, -1] - z0)) / np.max(np.abs(z0))
+    assert drift < 1e-6
+
+
+def test_periodic_start_agrees_with_long_integration():
+    """Two routes to the steady state: collocation + verification, and a long time integration
+    from the quasi-static state (from rest the excited grid modes make Radau crawl: issue 5)."""
+    dl = dl_of(5.0, 2.0)
+    a = steady_state(dl, Numerics(N=20, start="periodic", ss_tol=1e-4))
+    b = steady_state(dl, Numerics(N=20, start="quasistatic", ss_tol=1e-5))
+    assert a.converged and b.converged
+    assert b.periods > 3 * a.periods  # the transient from rest is long
+    assert rms(a.y_m) == pytest.approx(rms(b.y_m), rel=2e-4)
+
+
+def test_zero_amplitude_gives_zero_deflection():
+    r = simulate(Scene(drive=Drive(20.0, 0.0, 5.0), numerics=Numerics(N=10)))
+    assert r.rms_dynamic == 0.0 and r.rms_quasistatic == 0.0 and r.delta_rms == 0.0
+
+
+def test_reference_beam_resonance_near_7_hz():
+    """Fig. 3a: the resonance curve at Omega_0 = 5 rad/s peaks near f_d = 7 Hz (coarse)."""
+    f0 = natural_frequencies_hz(BEAM, 5.0, 1, N=80)[0]
+    assert 6.5 < f0 < 7.0
+    fds = np.array([4.0, 5.5, 6.5, 7.0, 7.5, 8.5, 10.0])
+    vals = []
+    for fd in fds:
+        res = solve_periodic_adaptive(dl_of(5.0, fd), 20, tail_tol=1e-3)
+        assert res.converged
+        vals.append(rms(Grid.build(20).midspan(res.theta)))
+    assert 6.5 <= fds[int(np.argmax(vals))] <= 7.5
+    assert max(vals) > 4 * vals[0] and max(vals) > 4 * vals[-1]

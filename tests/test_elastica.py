@@ -1,0 +1,73 @@
+"""The discrete model against closed forms and finite differences."""
+
+import numpy as np
+import pytest
+
+from rotbeam.elastica import DiscreteElastica, Grid
+from rotbeam.params import Effects
+
+
+@pytest.mark.parametrize("N", [5, 16, 40])
+@pytest.mark.parametrize("hub", [0.0, 2.875])
+def test_straight_beam_centrifugal_tension_closed_form(N, hub):
+    """n_x(s) = lam^2 [r_o (1 - s) + (1 - s^2)/2] on the straight spinning beam (exact here:
+    the load is linear in s, so the trapezoid sums of Q P integrate it exactly)."""
+    lam = 1.7
+    m = DiscreteElastica(N, hub, 0.1)
+    z = np.zeros(m.n)
+    nx, ny = m.tension(z, z, z, lam, 0.0)
+    s = m.grid.s[:-1]
+    exact = lam**2 * (hub * (1 - s) + (1 - s**2) / 2)
+    np.testing.assert_allclose(nx, exact, rtol=1e-13, atol=1e-13)
+    np.testing.assert_array_equal(ny, 0.0)
+    # the printed bracket 1 + (delta - 1) s - delta s^2 / 4 of Eq. (Disc_tension_x) differs
+    delta = 1 / (1 + hub)
+    printed = lam**2 / delta * (1 + (delta - 1) * s - delta * s**2 / 4)
+    assert np.max(np.abs(printed - exact)) > 0.1
+
+
+def test_straight_beam_is_an_equilibrium_without_euler_load():
+    m = DiscreteElastica(20, 2.875, 0.1)
+    z = np.zeros(m.n)
+    acc, _, _ = m.acceleration(z, z, 3.0, 0.0)
+    np.testing.assert_array_equal(acc, 0.0)
+
+
+@pytest.mark.parametrize("coriolis", [False, True])
+def test_first_order_jacobian_matches_finite_differences(coriolis):
+    m = DiscreteElastica(12, 2.875, 0.14, Effects(coriolis=coriolis))
+    rng = np.random.default_rng(1)
+    th, tt = 0.5 * rng.normal(size=m.n), rng.normal(size=m.n)
+    z = np.concatenate([th, tt])
+
+    def F(z):
+        a, _, _ = m.acceleration(z[: m.n], z[m.n :], 1.3, 0.7)
+        return np.concatenate([z[m.n :], a])
+
+    J = m.first_order_jacobian(th, tt, 1.3, 0.7)
+    h = 1e-6
+    Jn = np.array([(F(z + h * e) - F(z - h * e)) / (2 * h) for e in np.eye(2 * m.n)]).T
+    np.testing.assert_allclose(J, Jn, rtol=1e-6, atol=1e-6 * np.abs(Jn).max())
+
+
+def test_mass_matrix_tends_to_symmetric_kernel():
+    """W -> 1 - max(s, s') (the continuum kernel of int_s^1 int_0^s'' ds' ds'')."""
+    for N in (20, 80):
+        g = Grid.build(N)
+        s = g.s[:-1]
+        kernel = (1 - np.maximum.outer(s, s)) * g.ds
+        err = np.abs(g.W - kernel).max() / g.ds
+        assert err < 1.0 / N
+
+
+def test_nonrotating_frequency_second_order():
+    """First cantilever frequency beta_1^2 = 3.51602, error ~ N^-2."""
+    import scipy.linalg as sla
+
+    errs = []
+    for N in (20, 40, 80):
+        g = Grid.build(N)
+        w = np.sqrt(np.sort(sla.eigvals(g.K, g.W).real)[0])
+        errs.append(abs(w - 1.8751040687119611**2))
+    order = np.log2(np.array(errs[:-1]) / np.array(errs[1:]))
+    assert np.all((order > 1.8) & (order < 2.2)), order
