@@ -85,3 +85,36 @@ def first_crossing(
         root = brentq(lambda x: refine(x) - threshold, a, b, xtol=xtol)
         msg = "brentq"
     return Crossing(True, b, float(root), (a, b), msg)
+
+
+def critical_from_scan(f_ds: np.ndarray, delta: np.ndarray, threshold: float) -> dict:
+    """f_d* on one scanned line: the first scanned point with Delta RMS >= threshold (the paper's
+    rule) and the root of the monotone cubic (PCHIP) interpolant of the scan inside its bracket.
+
+    The root is found on the interpolant, not by new simulations, so that a new threshold costs
+    no simulation.  Failed points (NaN) are dropped and counted.
+    """
+    from scipy.interpolate import PchipInterpolator
+
+    threshold = check_threshold(threshold)
+    f_ds = np.asarray(f_ds, dtype=float)
+    delta = np.asarray(delta, dtype=float)
+    ok = np.isfinite(delta)
+    f, d = f_ds[ok], delta[ok]
+    order = np.argsort(f)
+    f, d = f[order], d[order]
+    out = {"threshold": threshold, "points_used": int(ok.sum()), "points_failed": int((~ok).sum()),
+           "f_d_grid": np.nan, "f_d_root": np.nan, "found": False}  # fmt: skip
+    c = first_crossing(f, d, threshold)
+    if not c.found:
+        out["message"] = c.message
+        return out
+    out.update(found=True, f_d_grid=c.grid_value)
+    if np.isnan(c.bracket[0]):
+        out["message"] = c.message
+        return out
+    interp = PchipInterpolator(f, d)
+    a, b = c.bracket
+    out["f_d_root"] = float(brentq(lambda x: float(interp(x)) - threshold, a, b, xtol=1e-10))
+    out["message"] = "bracketed on the scan, root of its PCHIP interpolant"
+    return out

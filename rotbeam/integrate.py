@@ -26,7 +26,7 @@ from scipy.integrate import solve_ivp
 from .elastica import DiscreteElastica
 from .modes import linear_forced_response
 from .params import Dimensionless, RotbeamInputError
-from .periodic import solve_periodic_adaptive
+from .periodic import PeriodicResult, solve_periodic_adaptive, trig_interpolate
 from .quasistatic import quasistatic_series
 
 METHODS = ("Radau", "BDF", "LSODA")
@@ -47,6 +47,7 @@ class Numerics:
     max_tau: float = 2000.0  #: ... or after this much dimensionless time
     start: str = "periodic"  #: initial state: "periodic", "linear", "quasistatic" or "rest"
     tail_tol: float = 1e-3  #: harmonic tail of the periodic (collocation) start
+    integrate: bool = True  #: verify the collocation orbit by time stepping (False: trust it)
 
     def __post_init__(self) -> None:
         from .elastica import _check_N
@@ -66,6 +67,14 @@ class Numerics:
             v = getattr(self, name)
             if isinstance(v, bool) or not isinstance(v, int) or v < lo:
                 raise RotbeamInputError(f"numerics.{name} must be an integer >= {lo}, got {v!r}")
+        if not isinstance(self.integrate, bool):
+            raise RotbeamInputError(
+                f"numerics.integrate must be true or false, got {self.integrate!r}"
+            )
+        if not isinstance(self.tail_tol, (int, float)) or not (1e-12 <= self.tail_tol <= 0.1):
+            raise RotbeamInputError(
+                f"numerics.tail_tol must be in [1e-12, 0.1], got {self.tail_tol!r}"
+            )
         if not isinstance(self.max_tau, (int, float)) or not (self.max_tau > 0):
             raise RotbeamInputError(f"numerics.max_tau must be > 0, got {self.max_tau!r}")
 
@@ -86,6 +95,7 @@ class SteadyState:
     njev: int = 0
     seconds: float = 0.0
     history: list[float] = field(default_factory=list)  #: transient bound per period
+    periodic: PeriodicResult | None = None  #: the collocation result, if one was made
 
 
 def period_samples(dl: Dimensionless, k0: int, periods: int, m: int) -> np.ndarray:
@@ -94,22 +104,51 @@ def period_samples(dl: Dimensionless, k0: int, periods: int, m: int) -> np.ndarr
 
 
 def initial_state(
-    model: DiscreteElastica, dl: Dimensionless, start: str, tail_tol: float = 1e-5
-) -> np.ndarray:
+    model: DiscreteElastica,
+    dl: Dimensionless,
+    start: str,
+    tail_tol: float = 1e-3,
+    guess: np.ndarray | None = None,
+) -> tuple[np.ndarray, PeriodicResult | None]:
+    """Initial state (Theta, Theta_t) at tau = 0, and the collocation result if one was made."""
     n = model.n
     if start == "rest":
-        return np.zeros(2 * n)
+        return np.zeros(2 * n), None
     if start == "periodic":
-        res = solve_periodic_adaptive(dl, model.grid.N, tail_tol=tail_tol)
+        res = solve_periodic_adaptive(dl, model.grid.N, tail_tol=tail_tol, guess=guess)
         if res.converged:
-            return np.concatenate([res.theta[:, 0], res.theta_t[:, 0]])
+            return np.concatenate([res.theta[:, 0], res.theta_t[:, 0]]), res
         start = "linear"  # fall back; the time stepping still decides
     if start == "linear":
         amp, _ = linear_forced_response(dl, model.grid.N)
-        return np.concatenate([amp.real, -dl.omega * amp.imag])
+        return np.concatenate([amp.real, -dl.omega * amp.imag]), None
     h = dl.period * 1e-4
     th = quasistatic_series(model, dl, np.array([-h, 0.0, h]))
-    return np.concatenate([th[:, 1], (th[:, 2] - th[:, 0]) / (2 * h)])
+    return np.concatenate([th[:, 1], (th[:, 2] - th[:, 0]) / (2 * h)]), None
+
+
+def _from_collocation(
+    model: DiscreteElastica, dl: Dimensionless, num: Numerics, res: PeriodicResult, t0: float
+) -> SteadyState:
+    """SteadyState straight from the collocation (no time stepping): `integrate=False`."""
+    m = num.samples_per_period
+    one = trig_interpolate(res.theta.T, m).T  # (n, m) over one period
+    theta = np.tile(one, (1, num.rms_periods))
+    taus = period_samples(dl, 0, num.rms_periods, m)
+    ok = res.converged and res.harmonic_tail <= num.tail_tol
+    msg = f"collocation M={res.M}: {res.message}, harmonic tail {res.harmonic_tail:.2g}"
+    return SteadyState(
+        tau=taus,
+        theta=theta,
+        y_m=np.atleast_1d(model.grid.midspan(theta)),
+        converged=ok,
+        status=0 if ok else 1,
+        message=msg + ("" if ok else " (not verified: collocation did not meet its tolerance)"),
+        periods=0,
+        transient=res.harmonic_tail,
+        seconds=time.perf_counter() - t0,
+        periodic=res,
+    )
 
 
 def steady_state(
@@ -117,15 +156,23 @@ def steady_state(
     numerics: Numerics | None = None,
     progress: Callable[[int, float], None] | None = None,
     response_scale: float | None = None,
+    guess: np.ndarray | None = None,
 ) -> SteadyState:
-    """Integrate from `numerics.start` until the periodic steady state, then sample it."""
+    """Integrate from `numerics.start` until the periodic steady state, then sample it.
+
+    With numerics.integrate = False (and start = "periodic") the collocation result is returned
+    as it is: fastest, but not checked by time stepping.  `guess` (M, N-1) seeds the collocation
+    (continuation along a sweep).
+    """
     num = numerics if numerics is not None else Numerics()
     t0 = time.perf_counter()
     model = DiscreteElastica(num.N, dl.hub_ratio, dl.eta, dl.effects)
     n = model.n
     P = dl.period
     m = num.samples_per_period
-    z = initial_state(model, dl, num.start, num.tail_tol)
+    z, periodic = initial_state(model, dl, num.start, num.tail_tol, guess)
+    if not num.integrate and periodic is not None:
+        return _from_collocation(model, dl, num, periodic, t0)
 
     # scale for absolute tolerances: the quasi-static response size if known
     scale = response_scale if response_scale else float(np.max(np.abs(z[:n])))
@@ -222,4 +269,5 @@ def steady_state(
         njev=njev,
         seconds=time.perf_counter() - t0,
         history=history,
+        periodic=periodic,
     )

@@ -192,10 +192,21 @@ def solve_periodic_adaptive(
     tail_tol: float = 1e-5,
     M_max: int = 129,
     rtol: float = 1e-10,
+    guess: np.ndarray | None = None,
 ) -> PeriodicResult:
-    """`solve_periodic` with M doubled (2M - 1) until the harmonic tail is below `tail_tol`."""
+    """`solve_periodic` with M doubled (2M - 1) until the harmonic tail is below `tail_tol`.
+
+    `guess` (M', N-1) from a neighbouring scene (continuation) is resampled to M points.
+    """
     M = M0 if M0 % 2 else M0 + 1
-    res = solve_periodic(dl, N, M, rtol=rtol)
+    if guess is not None:
+        guess = np.asarray(guess, dtype=float)
+        M = max(M, guess.shape[0] if guess.shape[0] % 2 else guess.shape[0] + 1)
+        if guess.shape[0] != M:
+            guess = trig_interpolate(guess, M)
+    res = solve_periodic(dl, N, M, guess=guess, rtol=rtol)
+    if not res.converged and guess is not None:
+        res = solve_periodic(dl, N, M, rtol=rtol)
     while res.converged and res.harmonic_tail > tail_tol and 2 * M - 1 <= M_max:
         guess = trig_interpolate(res.theta.T, 2 * M - 1)
         M = 2 * M - 1

@@ -167,8 +167,15 @@ def quasistatic_midspan(
     return theta, np.atleast_1d(model.grid.midspan(theta))
 
 
-def simulate(scene: Scene, progress: Callable[[int, float], None] | None = None) -> SceneResult:
-    """Dynamic steady state and quasi-static response sampled at the same instants."""
+def simulate(
+    scene: Scene,
+    progress: Callable[[int, float], None] | None = None,
+    guess: np.ndarray | None = None,
+) -> SceneResult:
+    """Dynamic steady state and quasi-static response sampled at the same instants.
+
+    `guess` seeds the periodic collocation (the previous point's orbit along a sweep).
+    """
     t0 = time.perf_counter()
     dl = scene.dimensionless
     num = scene.numerics
@@ -176,7 +183,7 @@ def simulate(scene: Scene, progress: Callable[[int, float], None] | None = None)
     taus_one = np.arange(num.samples_per_period) / num.samples_per_period * dl.period
     th_qs1, _ = quasistatic_midspan(dl, num.N, taus_one)
     scale = float(np.max(np.abs(th_qs1))) if th_qs1.size else 0.0
-    dyn = steady_state(dl, num, progress=progress, response_scale=scale or None)
+    dyn = steady_state(dl, num, progress=progress, response_scale=scale or None, guess=guess)
     theta_qs, y_qs = quasistatic_midspan(dl, num.N, dyn.tau)
     r_dyn = rms(dyn.y_m)
     r_qs = rms(y_qs)

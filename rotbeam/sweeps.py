@@ -1,0 +1,92 @@
+"""Sweeps of scenes: a line of drive frequencies at one Omega_0, with continuation and with a
+row for every point, failed ones included (their reason in `message`)."""
+
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Callable, Sequence
+from dataclasses import replace
+
+import numpy as np
+import pandas as pd
+
+from .integrate import Numerics
+from .modes import natural_frequencies_hz
+from .params import Beam, Drive, Effects, RotbeamInputError, drive_groups
+from .quasistatic import QuasiStaticError
+from .scene import Scene, simulate
+
+COLUMNS = [
+    "omega0", "f_d", "amplitude", "fd_over_fn", "C_max", "E_max", "E_n", "f_n_hz", "f0_hz",
+    "rms_dynamic", "rms_quasistatic", "delta_rms", "converged", "status", "message",
+    "periods", "N", "seconds",
+]  # fmt: skip
+
+
+def resonance_frequency_hz(beam: Beam, omega0: float, amplitude: float = 1.0, N: int = 80) -> float:
+    """f_0: first in-plane frequency of the linearised model at the maximal speed Omega_0 + a
+    (the premise of Eq. Southwell), exact rather than the Southwell line."""
+    return float(natural_frequencies_hz(beam, abs(omega0) + amplitude, 1, N, softening=True)[0])
+
+
+def boundary_scan_frequencies(
+    beam: Beam, omega0: float, lo: float, hi: float, points: int, amplitude: float = 1.0
+) -> np.ndarray:
+    """Drive frequencies f_0 * linspace(lo, hi, points) for locating f_d* on one C_max line."""
+    if not (0 < lo < hi):
+        raise RotbeamInputError(f"scan range must satisfy 0 < lo < hi, got lo={lo}, hi={hi}")
+    if points < 2:
+        raise RotbeamInputError(f"scan points must be >= 2, got {points}")
+    return resonance_frequency_hz(beam, omega0, amplitude) * np.linspace(lo, hi, points)
+
+
+def scan_line(
+    beam: Beam,
+    omega0: float,
+    f_ds: Sequence[float],
+    amplitude: float = 1.0,
+    effects: Effects | None = None,
+    numerics: Numerics | None = None,
+    log: Callable[[str], None] | None = None,
+) -> pd.DataFrame:
+    """Dynamic and quasi-static RMS at each drive frequency of one line (continuation in f_d)."""
+    effects = effects or Effects()
+    numerics = numerics or Numerics()
+    f0 = resonance_frequency_hz(beam, omega0, amplitude)
+    rows = []
+    guess = None
+    t_line = time.perf_counter()
+    for k, f_d in enumerate(f_ds):
+        drive = Drive(omega0=omega0, amplitude=amplitude, f_d=float(f_d))
+        row = {"omega0": omega0, "f_d": float(f_d), "amplitude": amplitude, "f0_hz": f0,
+               "f_n_hz": beam.f_n, "N": numerics.N}  # fmt: skip
+        row.update(drive_groups(beam, drive))
+        t0 = time.perf_counter()
+        try:
+            res = simulate(Scene(beam, drive, effects, numerics), guess=guess)
+            s = res.summary()
+            keys = ("rms_dynamic", "rms_quasistatic", "delta_rms", "converged", "status",
+                    "message", "periods")  # fmt: skip
+            row.update({key: s[key] for key in keys})
+            if res.dynamic.periodic is not None and res.dynamic.periodic.converged:
+                guess = res.dynamic.periodic.theta.T
+        except (QuasiStaticError, np.linalg.LinAlgError, FloatingPointError, ValueError) as exc:
+            row.update({"rms_dynamic": math.nan, "rms_quasistatic": math.nan,
+                        "delta_rms": math.nan, "converged": False, "status": -2,
+                        "message": f"{type(exc).__name__}: {exc}", "periods": 0})  # fmt: skip
+            guess = None
+        row["seconds"] = time.perf_counter() - t0
+        rows.append(row)
+        if log is not None:
+            log(
+                f"[{k + 1}/{len(f_ds)}] Omega_0={omega0:g} f_d={f_d:.4g} Hz "
+                f"RMS_dyn={row['rms_dynamic']:.4g} dRMS={row['delta_rms']:.4g} "
+                f"{'ok' if row['converged'] else 'FAILED: ' + row['message']} "
+                f"({row['seconds']:.2f} s, line {time.perf_counter() - t_line:.1f} s)"
+            )
+    return pd.DataFrame(rows, columns=COLUMNS)
+
+
+def numerics_from_config(cfg: dict | None) -> Numerics:
+    return replace(Numerics(), **(cfg or {}))
