@@ -1,0 +1,26 @@
+# rotbeam: every simulated figure and table of the paper from one command.
+#   snakemake --cores all                               full reproduction
+#   snakemake --cores all --configfile config/quick.yaml   low resolution, minutes
+import os
+
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")  # one BLAS thread per job: jobs run in parallel
+os.environ.setdefault("OMP_NUM_THREADS", "1")
+
+
+configfile: "config/config.yaml"
+
+
+report: "workflow/report/workflow.rst"
+
+
+include: "workflow/rules/common.smk"
+include: "workflow/rules/simulate.smk"
+include: "workflow/rules/figures.smk"
+include: "workflow/rules/boundary.smk"
+include: "workflow/rules/tables.smk"
+
+
+rule all:
+    input:
+        all_targets(),
+    default_target: True

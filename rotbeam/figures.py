@@ -1,0 +1,281 @@
+"""The paper's figures, drawn from the workflow's tables (one function per figure)."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+
+import numpy as np
+import pandas as pd
+
+from .criterion import power_spectrum
+from .params import Beam, Drive
+from .plotting import ACCENT, DYN, GREY, QS, figure, panel_label, save
+
+
+def fig1_drive(omega0: float, amplitude: float, f_d: float, pdf: str, png: str) -> None:
+    """Fig. 1b,c: Omega(t) and dOmega/dt over two drive periods."""
+    d = Drive(omega0, amplitude, f_d)
+    t = np.linspace(0.0, 2.0 / f_d, 400)
+    fig, (a, b) = figure(2, 1, height=4.2, sharex=True)
+    a.plot(t, [d.omega(x) for x in t], color=DYN)
+    a.axhline(omega0, color=GREY, ls="--", lw=0.8)
+    a.set_ylabel(r"$\Omega$ [rad/s]")
+    b.plot(t, [d.omega_dot(x) for x in t], color=QS)
+    b.set_ylabel(r"$\dot\Omega$ [rad/s$^2$]")
+    b.set_xlabel("t [s]")
+    panel_label(a, "(b)")
+    panel_label(b, "(c)")
+    a.set_title(rf"$\Omega_0$ = {omega0:g} rad/s, a = {amplitude:g} rad/s, $f_d$ = {f_d:g} Hz")
+    save(fig, pdf, png)
+
+
+def fig2_shapes(shapes: pd.DataFrame, pdf: str, png: str) -> None:
+    """Fig. 2c stand-in: lab-frame centerlines over one period, midspan marked."""
+    fig, (a, b) = figure(1, 2, width=8.0, height=4.0)
+    frames = sorted(shapes["frame"].unique())
+    cmap = __import__("matplotlib").colormaps["viridis"]
+    for k in frames:
+        f = shapes[shapes["frame"] == k]
+        col = cmap(k / max(1, len(frames) - 1))
+        mid = f.iloc[(f["s"] - 0.5).abs().argmin()]
+        a.plot(f["x_lab"], f["y_lab"], color=col, lw=2)
+        a.plot(mid["x_lab"], mid["y_lab"], "o", color="m", ms=5)
+        b.plot(f["x_rot"], f["y_rot"], color=col, lw=1.5, label=f"t/P = {f['phase'].iloc[0]:.2f}")
+        b.plot(mid["x_rot"], mid["y_rot"], "o", color="m", ms=4)
+    a.plot(0, 0, "k+", ms=10)
+    a.set_aspect("equal")
+    a.set_xlabel("X / L (lab frame)")
+    a.set_ylabel("Y / L")
+    a.set_title("lab frame, axis at +")
+    b.set_xlabel("(R_o + x) / L (rotating frame)")
+    b.set_ylabel("y / L")
+    b.set_title("rotating frame, midspan in magenta")
+    b.legend(ncol=2)
+    save(fig, pdf, png)
+
+
+def fig3_resonance(line: pd.DataFrame, series: pd.DataFrame, pdf: str, png: str) -> None:
+    """Fig. 3: resonance curve RMS(y_m) vs f_d, y_m(tau) at one f_d, its power spectrum."""
+    fig, axes = figure(1, 3, width=11.0, height=3.6)
+    a, b, c = axes
+    ok = line["converged"].astype(bool)
+    a.plot(line["f_d"], line["rms_dynamic"], "o-", color=DYN, mfc="none", label="dynamical")
+    a.plot(line["f_d"], line["rms_quasistatic"], "*--", color=QS, label="quasi-static")
+    if (~ok).any():
+        a.plot(line.loc[~ok, "f_d"], line.loc[~ok, "rms_dynamic"], "x", color="r", label="failed")
+    a.set_xlabel("$f_d$ [Hz]")
+    a.set_ylabel("RMS($y_m$)")
+    a.set_title(rf"$\Omega_0$ = {line['omega0'].iloc[0]:g} rad/s")
+    a.legend()
+    b.plot(series["tau"] - series["tau"].iloc[0], series["y_m_dynamic"], color=DYN, label="dyn.")
+    b.plot(series["tau"] - series["tau"].iloc[0], series["y_m_quasistatic"], "--", color=QS,
+           label="QS")  # fmt: skip
+    b.set_xlabel(r"$\tau$ (steady state)")
+    b.set_ylabel("$y_m$")
+    b.set_title(rf"$f_d$ = {series['f_d'].iloc[0]:g} Hz")
+    b.legend()
+    T = float(series["t_s"].iloc[1] - series["t_s"].iloc[0]) / float(
+        series["tau"].iloc[1] - series["tau"].iloc[0]
+    )
+    f, amp = power_spectrum(series["tau"].to_numpy(), series["y_m_dynamic"].to_numpy())
+    c.plot(f / T, amp, color=DYN)
+    c.set_xlim(0, 5 * series["f_d"].iloc[0])
+    c.set_xlabel("$f_r$ [Hz]")
+    c.set_ylabel("|FFT($y_m$)|")
+    for ax, lab in zip(axes, "abc", strict=True):
+        panel_label(ax, f"({lab})")
+    save(fig, pdf, png)
+
+
+def fig4_compare(
+    lines: Sequence[pd.DataFrame], crit: pd.DataFrame, threshold: float, pdf: str, png: str
+) -> None:
+    """Fig. 4: RMS dyn/QS and Delta RMS vs f_d/f_n at two Omega_0, f_d* and f_0 marked."""
+    fig, axes = figure(2, len(lines), width=4.2 * len(lines), height=6.0, squeeze=False)
+    for j, line in enumerate(lines):
+        w0 = float(line["omega0"].iloc[0])
+        fn = float(line["f_n_hz"].iloc[0])
+        x = line["f_d"] / fn
+        a, b = axes[0, j], axes[1, j]
+        a.plot(x, line["rms_dynamic"], "o-", color=DYN, mfc="none", label="dynamical")
+        a.plot(x, line["rms_quasistatic"], "*--", color=QS, label="quasi-static")
+        a.set_ylabel("RMS($y_m$)")
+        a.set_title(rf"$\Omega_0$ = {w0:g} rad/s")
+        b.semilogy(x, line["delta_rms"], "o-", color=DYN, mfc="none")
+        b.axhline(threshold, color="k", lw=0.8)
+        b.set_ylabel(r"$\Delta$RMS")
+        b.set_xlabel("$f_d / f_n$")
+        row = crit[np.isclose(crit["omega0"], w0)]
+        f0 = float(line["f0_hz"].iloc[0]) / fn
+        peak = float(x.iloc[int(np.nanargmax(line["rms_dynamic"].to_numpy()))])
+        for ax in (a, b):
+            ax.axvline(f0, color=GREY, ls="--", lw=1, label=r"$f_0/f_n$ (linear)")
+            if not row.empty and np.isfinite(row["f_d_root"].iloc[0]):
+                fs = float(row["f_d_root"].iloc[0]) / fn
+                ax.axvline(fs, color=ACCENT, ls=":", lw=1.5, label=r"$f_d^\star/f_n$")
+                ax.axvspan(0, fs, color=ACCENT, alpha=0.08)
+        a.plot([peak], [np.nanmax(line["rms_dynamic"])], "v", color="k", label="peak of scan")
+        if not row.empty and np.isfinite(row["f_d_grid"].iloc[0]):
+            g = float(row["f_d_grid"].iloc[0])
+            gd = line.loc[np.isclose(line["f_d"], g), "delta_rms"]
+            b.plot([g / fn], gd.to_numpy()[:1], "^", color="k", mfc="none", ms=9,
+                   label=r"first point $\geq$ threshold")  # fmt: skip
+        a.legend(fontsize=7)
+        b.legend(fontsize=7)
+        panel_label(a, "(" + "ab"[j] + ")")
+        panel_label(b, "(" + "cd"[j] + ")")
+    save(fig, pdf, png)
+
+
+def fig5_phase(
+    boundary: pd.DataFrame, threshold: float, series: Sequence[pd.DataFrame], pdf: str, png: str
+) -> None:
+    """Fig. 5: E*(C_max) with the quasi-static region shaded; time series above/below."""
+    fig = __import__("matplotlib.pyplot", fromlist=["x"]).figure(figsize=(10, 4.0))
+    gs = fig.add_gridspec(2, 2, width_ratios=[1.2, 1])
+    a = fig.add_subplot(gs[:, 0])
+    sub = boundary[np.isclose(boundary["threshold"], threshold)].sort_values("C_max")
+    c, e, eg = sub["C_max"], sub["E_star_root"], sub["E_star_grid"]
+    a.loglog(c, e, "^-", color="k", label=r"$\mathcal{E}^\star$ (root)")
+    a.loglog(c, eg, "^", color=GREY, mfc="none", label="first grid point (paper's rule)")
+    a.fill_between(c, 1e-3, e, color=ACCENT, alpha=0.15, label="quasi-static")
+    a.set_ylim(min(0.5 * np.nanmin(e), 0.1), 3 * np.nanmax(e))
+    for s in series:
+        a.plot(s["C_max"].iloc[0], s["E_max"].iloc[0], "s", color=DYN)
+    a.set_xlabel(r"$\mathcal{C}_{max}$")
+    a.set_ylabel(r"$\mathcal{E}^\star$")
+    a.legend(loc="upper left")
+    panel_label(a, "(a)")
+    for k, s in enumerate(series):
+        ax = fig.add_subplot(gs[k, 1])
+        tau = s["tau"] - s["tau"].iloc[0]
+        ax.plot(tau, s["y_m_dynamic"], color=DYN, label="dynamical")
+        ax.plot(tau, s["y_m_quasistatic"], "--", color=QS, label="quasi-static")
+        ax.set_title(
+            rf"$\mathcal{{C}}_{{max}}$={s['C_max'].iloc[0]:.3g}, "
+            rf"$\mathcal{{E}}_{{max}}$={s['E_max'].iloc[0]:.3g}: "
+            rf"$\Delta$RMS={s['delta_rms'].iloc[0]:.3f}",
+            fontsize=9,
+        )
+        ax.set_ylabel("$y_m$")
+        panel_label(ax, "(" + "bc"[k] + ")")
+        if k == len(series) - 1:
+            ax.set_xlabel(r"$\tau$")
+            ax.legend(fontsize=7)
+    fig.set_layout_engine("constrained")
+    save(fig, pdf, png)
+
+
+def fig6_critical(boundary: pd.DataFrame, threshold: float, c: float, c_err: float, pdf, png):
+    """Fig. 6: f_0/f_n, f_d*/f_n and c f_0/f_n vs C_max."""
+    sub = boundary[np.isclose(boundary["threshold"], threshold)].sort_values("C_max")
+    fn = sub["f_n_hz"]
+    fig, a = figure(height=4.0)
+    a.loglog(sub["C_max"], sub["f0_hz"] / fn, "o", color=DYN, mfc="none", label=r"$f_0/f_n$")
+    a.loglog(sub["C_max"], sub["f_d_root"] / fn, "^", color="k", label=r"$f_d^\star/f_n$")
+    a.loglog(sub["C_max"], c * sub["f0_hz"] / fn, "s", color=QS, mfc="none",
+             label=rf"$c f_0/f_n$, c = {c:.3f} $\pm$ {c_err:.3f}")  # fmt: skip
+    a.set_xlabel(r"$\mathcal{C}_{max}$")
+    a.set_ylabel("frequency / $f_n$")
+    a.legend()
+    save(fig, pdf, png)
+
+
+def figB8_convergence(lines: pd.DataFrame, pdf: str, png: str) -> None:
+    """Fig. B.8: RMS(y_m) vs N for each (Omega_0, f_d), relative to the finest N."""
+    fig, (a, b) = figure(1, 2, width=9.0, height=3.8)
+    Nmax = lines["N"].max()
+    for (w0, fd), sub in lines.groupby(["omega0", "f_d"]):
+        sub = sub.sort_values("N")
+        ref = float(sub.loc[sub["N"] == Nmax, "rms_dynamic"].iloc[0])
+        lab = rf"$\Omega_0$={w0:g}, $f_d$={fd:g} Hz"
+        a.plot(sub["N"], sub["rms_dynamic"], "o-", label=lab)
+        err = (sub["rms_dynamic"] / ref - 1).abs()
+        b.loglog(sub["N"][sub["N"] < Nmax], err[sub["N"] < Nmax], "o-", label=lab)
+    n = np.array(sorted(lines["N"].unique()))[:-1].astype(float)
+    if n.size:
+        b.loglog(n, 0.5 * (n / n[0]) ** -2, "k:", label=r"$N^{-2}$")
+    a.set_xlabel("N")
+    a.set_ylabel("RMS($y_m$)")
+    b.set_xlabel("N")
+    b.set_ylabel(f"|RMS / RMS(N={Nmax}) - 1|")
+    a.legend(fontsize=6)
+    b.legend(fontsize=6)
+    save(fig, pdf, png)
+
+
+def _scaled_x(row) -> float:
+    """S_1 G a^2 C_max / E_n^2, the abscissa on which Eq. (scaled_analytical_sol) is universal."""
+    from .surrogate import southwell_coefficient
+
+    S1 = southwell_coefficient(row["hub_ratio"])
+    return S1 * row["G"] * row["C_max"] / row["E_n"] ** 2
+
+
+def figD9_thresholds(boundary: pd.DataFrame, cfit: pd.DataFrame, pdf: str, png: str) -> None:
+    """Fig. D.9: scaled boundary E*/E_n vs C_max for each threshold, with its fitted c."""
+    fig, a = figure(height=4.2)
+    markers = ">", "<", "^", "v", "o", "s", "D"
+    for k, (th, sub) in enumerate(boundary.groupby("threshold")):
+        sub = sub.sort_values("C_max")
+        row = cfit[np.isclose(cfit["threshold"], th)]
+        col = "ref_c_root" if "ref_c_root" in cfit else "c_root"
+        c = float(row[col].iloc[0]) if not row.empty else math.nan
+        a.loglog(sub["C_max"], sub["E_star_root"] / sub["E_n"], markers[k % 7] + "-",
+                 label=rf"$\Delta$RMS$_{{th}}$={th:g}: c={c:.3f}")  # fmt: skip
+    a.set_xlabel(r"$\mathcal{C}_{max}$")
+    a.set_ylabel(r"$\mathcal{E}^\star/\mathcal{E}_n$")
+    a.legend()
+    save(fig, pdf, png)
+
+
+def fig7_collapse(boundary: pd.DataFrame, c: float, pdf: str, png: str) -> None:
+    """Fig. 7: (a) E* vs C_max per beam; (b) E*/E_n vs S_1 G a^2 C_max / E_n^2 with
+    Eq. (scaled_analytical_sol), c sqrt(1 + x)."""
+    fig, (a, b) = figure(1, 2, width=10.0, height=4.2)
+    markers = dict(zip(sorted(boundary["E"].unique()), "osD^v<>ph", strict=False))
+    hls = sorted(boundary["h_over_L"].unique())
+    cmap = __import__("matplotlib").colormaps["plasma"]
+    Ls = sorted(boundary["L"].unique())
+    b2 = boundary.copy()
+    b2["x"] = [_scaled_x(r) for _, r in b2.iterrows()]
+    for (E, L, hl), sub in b2.groupby(["E", "L", "h_over_L"]):
+        sub = sub.sort_values("C_max")
+        col = cmap(hls.index(hl) / max(1, len(hls) - 1) * 0.85)
+        ms = 4 + 3 * Ls.index(L)
+        kw = dict(marker=markers[E], color=col, ms=ms, mfc="none", ls="-", lw=0.6)
+        a.loglog(sub["C_max"], sub["E_star_root"], **kw)
+        b.loglog(sub["x"], sub["E_star_root"] / sub["E_n"], **kw)
+    x = np.logspace(np.log10(max(b2["x"].min(), 1e-6)) - 0.3, np.log10(b2["x"].max()) + 0.3, 200)
+    b.loglog(x, c * np.sqrt(1 + x), "k-", label=rf"$c\sqrt{{1+x}}$, c = {c:.3f}")
+    for E, m in markers.items():
+        a.plot([], [], m, color="k", mfc="none", label=f"E = {E:.0e} Pa")
+    for hl in hls:
+        a.plot([], [], "-", color=cmap(hls.index(hl) / max(1, len(hls) - 1) * 0.85),
+               label=f"h/L = {hl:g}")  # fmt: skip
+    a.set_xlabel(r"$\mathcal{C}_{max}$")
+    a.set_ylabel(r"$\mathcal{E}^\star$")
+    a.legend(fontsize=6, title="marker size: L", title_fontsize=6)
+    b.set_xlabel(r"$x = S_1 G a^2 \mathcal{C}_{max} / \mathcal{E}_n^2$")
+    b.set_ylabel(r"$\mathcal{E}^\star/\mathcal{E}_n$")
+    b.legend()
+    panel_label(a, "(a)")
+    panel_label(b, "(b)")
+    save(fig, pdf, png)
+
+
+def figE10_c0(zeta_max: float, points: int, beam: Beam, pdf: str, png: str) -> None:
+    """Fig. E.10: c_0 vs zeta for threshold 0.10, the reference beam's zeta marked."""
+    from .secondorder import c0_root
+
+    z = np.linspace(0.0, zeta_max, points)
+    c0 = [c0_root(x, 0.10) for x in z]
+    fig, a = figure(height=3.8)
+    a.plot(z, c0, color=DYN)
+    a.axvline(beam.zeta, color=QS, ls="--", label=rf"reference beam $\zeta$ = {beam.zeta:.4f}")
+    a.axhline(math.sqrt(0.1), color=GREY, ls=":", label=r"$\zeta \to 0$: $c_0 = \sqrt{0.1}$")
+    a.set_xlabel(r"$\zeta$")
+    a.set_ylabel("$c_0$")
+    a.legend()
+    save(fig, pdf, png)

@@ -1,0 +1,58 @@
+"""One style for every figure, and atomic PDF + PNG output."""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+STYLE = {
+    "figure.dpi": 100,
+    "savefig.dpi": 200,
+    "font.size": 10,
+    "axes.labelsize": 10,
+    "axes.titlesize": 10,
+    "legend.fontsize": 8,
+    "legend.frameon": False,
+    "axes.grid": True,
+    "grid.alpha": 0.3,
+    "lines.linewidth": 1.4,
+    "lines.markersize": 5,
+    "axes.spines.top": False,
+    "axes.spines.right": False,
+    "figure.constrained_layout.use": True,
+}
+DYN = "#1f4e9c"  #: dynamical model
+QS = "#d95f02"  #: quasi-static model
+ACCENT = "#2ca02c"
+GREY = "0.4"
+
+
+def apply_style() -> None:
+    plt.rcParams.update(STYLE)
+
+
+def figure(nrows: int = 1, ncols: int = 1, width: float = 6.4, height: float = 4.0, **kw):
+    apply_style()
+    return plt.subplots(nrows, ncols, figsize=(width, height), **kw)
+
+
+def save(fig, pdf: str | Path, png: str | Path | None = None) -> None:
+    """Write the figure as PDF (and PNG) through temporary names, then close it."""
+    for path in (pdf, png):
+        if path is None:
+            continue
+        path = Path(path)
+        path.parent.mkdir(parents=True, exist_ok=True)
+        tmp = path.with_name(f".{path.stem}.{os.getpid()}.part{path.suffix}")
+        fig.savefig(tmp)
+        tmp.replace(path)
+    plt.close(fig)
+
+
+def panel_label(ax, text: str) -> None:
+    ax.text(0.01, 0.99, text, transform=ax.transAxes, ha="left", va="top", fontweight="bold")

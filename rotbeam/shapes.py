@@ -1,0 +1,48 @@
+"""Centerline shapes in the rotating and the lab frame.
+
+The lab frame turns the rotating frame by phi(t) = int_0^t Omega dt
+= Omega_0 t + a (1 - cos(2 pi f_d t)) / (2 pi f_d); points are measured from the axis, in units
+of L: R(s) = (r_o + x(s), y(s)).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pandas as pd
+
+from .elastica import Grid
+
+
+def rotation_angle(omega0: float, amplitude: float, f_d: float, t: np.ndarray) -> np.ndarray:
+    w = 2.0 * math.pi * f_d
+    return omega0 * t + amplitude * (1.0 - np.cos(w * t)) / w
+
+
+def shapes_over_period(result, frames: int | None = None) -> pd.DataFrame:
+    """One row per node and frame: s, rotating-frame and lab-frame coordinates (units of L)."""
+    scene = result.scene
+    grid = Grid.build(scene.numerics.N)
+    r_o = scene.beam.hub_ratio
+    d = scene.drive
+    rows = []
+    theta = result.dynamic.theta
+    m = result.tau.size
+    picks = range(m) if frames is None else np.linspace(0, m, frames, endpoint=False).astype(int)
+    for frame, k in enumerate(picks):
+        tau = result.tau[k]
+        t = tau * scene.beam.T
+        t_rel = t - result.tau[0] * scene.beam.T
+        s, x, y = grid.full_shape(theta[:, k])
+        X, Y = r_o + x, y
+        phi = rotation_angle(d.omega0, d.amplitude, d.f_d, np.array(t))
+        c, sn = math.cos(float(phi)), math.sin(float(phi))
+        for j in range(s.size):
+            rows.append({
+                "frame": frame, "t_s": t_rel, "phase": t_rel * d.f_d, "s": s[j],
+                "x_rot": X[j], "y_rot": Y[j],
+                "x_lab": c * X[j] - sn * Y[j], "y_lab": sn * X[j] + c * Y[j],
+                "phi": float(phi),
+            })  # fmt: skip
+    return pd.DataFrame(rows)

@@ -1,0 +1,139 @@
+"""The studies of the paper as plain data built from the workflow config (no snakemake here).
+
+A *line* is one sweep job: a beam, a mean speed Omega_0 and a list (or an f_0-relative scan) of
+drive frequencies.  A *series* is one scene whose time series is kept.  Ids are readable and
+carry the values that define them, so that an output path names its parameters.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+
+from .params import Beam, RotbeamInputError, fd_for_emax, omega0_for_cmax
+
+REF = "ref"
+
+
+def g(x: float) -> str:
+    return format(float(x), "g")
+
+
+def beam_id(beam: dict[str, float]) -> str:
+    return f"E{g(beam['E'])}_L{g(beam['L'])}_hL{g(beam['h'] / beam['L'])}"
+
+
+def fig7_beams(config: dict[str, Any]) -> dict[str, dict[str, float]]:
+    """Grid of beams: E x L x h/L, keeping b/h, rho, gamma and R of the reference beam."""
+    ref = config["beam"]
+    out = {}
+    for E in config["fig7"]["E"]:
+        for L in config["fig7"]["L"]:
+            for hl in config["fig7"]["h_over_L"]:
+                h = hl * L
+                b = ref["b"] / ref["h"] * h
+                beam = dict(ref, E=float(E), L=float(L), h=float(h), b=float(b))
+                out[beam_id(beam)] = beam
+    return out
+
+
+def check_config(config: dict[str, Any]) -> None:
+    """Physical checks the JSON schema cannot express; messages name the key."""
+    try:
+        Beam(**config["beam"])
+    except TypeError as exc:
+        raise RotbeamInputError(f"config beam: {exc}") from None
+    for name in ("fig4", "boundary", "fig7"):
+        lo, hi = config[name]["lo"], config[name]["hi"]
+        if not lo < hi:
+            raise RotbeamInputError(f"config {name}: lo={lo} must be < hi={hi}")
+    f3 = config["fig3"]
+    if not f3["f_d_min"] < f3["f_d_max"]:
+        raise RotbeamInputError(
+            f"config fig3: f_d_min={f3['f_d_min']} must be < f_d_max={f3['f_d_max']}"
+        )
+    for beam in fig7_beams(config).values():
+        Beam(**beam)
+
+
+def boundary_lines(beam: dict[str, float], c_max: list[float], scan: dict, amplitude: float):
+    """One line per C_max; C_max below G a^2 (Omega_0 < 0) is skipped and listed."""
+    b = Beam(**beam)
+    lines, skipped = {}, []
+    for c in c_max:
+        w0 = omega0_for_cmax(b, c, amplitude)
+        if w0 < 0:
+            skipped.append(c)
+            continue
+        lines[f"cmax{g(c)}"] = {
+            "beam": beam, "omega0": w0, "amplitude": amplitude, "c_max": float(c),
+            "scan": {"lo": scan["lo"], "hi": scan["hi"], "points": scan["points"]},
+        }  # fmt: skip
+    return lines, skipped
+
+
+def lines_from_config(config: dict[str, Any]) -> dict[tuple[str, str], dict[str, Any]]:
+    """Every sweep line of the workflow, keyed by (beam id, line id)."""
+    a = float(config["amplitude"])
+    ref = config["beam"]
+    out: dict[tuple[str, str], dict[str, Any]] = {}
+    f3 = config["fig3"]
+    out[(REF, "fig3")] = {
+        "beam": ref, "omega0": f3["omega0"], "amplitude": a,
+        "f_d": np.linspace(f3["f_d_min"], f3["f_d_max"], f3["points"]).round(10).tolist(),
+    }  # fmt: skip
+    f4 = config["fig4"]
+    for w in f4["omega0"]:
+        out[(REF, f"fig4_w{g(w)}")] = {
+            "beam": ref, "omega0": float(w), "amplitude": a,
+            "scan": {"lo": f4["lo"], "hi": f4["hi"], "points": f4["points"]},
+        }  # fmt: skip
+    lines, _ = boundary_lines(ref, config["boundary"]["c_max"], config["boundary"], a)
+    out.update({(REF, k): v for k, v in lines.items()})
+    f7 = config["fig7"]
+    for bid, beam in fig7_beams(config).items():
+        lines, _ = boundary_lines(beam, f7["c_max"], f7, a)
+        out.update({(bid, k): v for k, v in lines.items()})
+    cv = config["convergence"]
+    for N in cv["N"]:
+        for w in cv["omega0"]:
+            out[(REF, f"conv_N{N}_w{g(w)}")] = {
+                "beam": ref, "omega0": float(w), "amplitude": a, "N": int(N),
+                "f_d": [float(f) for f in cv["f_d"]],
+            }  # fmt: skip
+    return out
+
+
+def series_from_config(config: dict[str, Any]) -> dict[str, dict[str, Any]]:
+    """Single scenes whose time series are kept (Fig. 3b,c; Fig. 5b,c)."""
+    a = float(config["amplitude"])
+    ref = config["beam"]
+    b = Beam(**ref)
+    f3 = config["fig3"]
+    out = {
+        "fig3": {"beam": ref, "omega0": f3["omega0"], "f_d": f3["series_f_d"], "amplitude": a,
+                 "periods": f3["series_periods"]},
+    }  # fmt: skip
+    f5 = config["fig5"]
+    w0 = omega0_for_cmax(b, f5["c_max"], a)
+    for e in f5["e_max"]:
+        out[f"fig5_E{g(e)}"] = {
+            "beam": ref, "omega0": w0, "f_d": fd_for_emax(b, e, a), "amplitude": a,
+            "periods": f5["periods"], "c_max": f5["c_max"], "e_max": float(e),
+        }  # fmt: skip
+    return out
+
+
+def scan_frequencies(spec: dict[str, Any]) -> list[float]:
+    """The drive frequencies of a line (explicit list, or f_0-relative scan)."""
+    if "f_d" in spec:
+        return [float(f) for f in spec["f_d"]]
+    from .sweeps import boundary_scan_frequencies
+
+    s = spec["scan"]
+    f = boundary_scan_frequencies(
+        Beam(**spec["beam"]), spec["omega0"], s["lo"], s["hi"], s["points"], spec["amplitude"]
+    )
+    return [float(x) for x in f if math.isfinite(x)]

@@ -1,0 +1,124 @@
+# The phase boundary: thresholds act here, downstream of every simulation.
+
+
+rule boundary_table:
+    input:
+        lambda w: boundary_line_files(w.beam),
+    output:
+        "results/boundary/{beam}.csv",
+    params:
+        thresholds=sorted(set(config["thresholds"]) | {config["main_threshold"]}),
+        beam=lambda w: config["beam"] if w.beam == REF else FIG7_BEAMS[w.beam],
+    log:
+        "logs/boundary_table/{beam}.log",
+    benchmark:
+        "benchmarks/boundary_table/{beam}.tsv"
+    script:
+        "../scripts/boundary_table.py"
+
+
+rule c_per_threshold:
+    input:
+        ref="results/boundary/ref.csv",
+        beams=expand("results/boundary/{beam}.csv", beam=sorted(FIG7_BEAMS)),
+    output:
+        csv="results/tables/c_per_threshold.csv",
+        md=report(
+            "results/tables/c_per_threshold.md",
+            caption="../report/c_per_threshold.rst",
+            category="Tables",
+        ),
+        boundary_csv="results/tables/boundary_ref.csv",
+        boundary_md="results/tables/boundary_ref.md",
+    log:
+        "logs/c_per_threshold.log",
+    benchmark:
+        "benchmarks/c_per_threshold.tsv"
+    script:
+        "../scripts/c_per_threshold.py"
+
+
+rule fig5:
+    input:
+        boundary="results/boundary/ref.csv",
+        series=expand(
+            "results/series/fig5_E{e}.csv",
+            e=[format(float(e), "g") for e in config["fig5"]["e_max"]],
+        ),
+    output:
+        pdf=report(
+            "results/fig5/phase_diagram.pdf",
+            caption="../report/fig5.rst",
+            category="Figures",
+        ),
+        png="results/fig5/phase_diagram.png",
+    params:
+        threshold=config["main_threshold"],
+    log:
+        "logs/fig5.log",
+    benchmark:
+        "benchmarks/fig5.tsv"
+    script:
+        "../scripts/fig5.py"
+
+
+rule fig6:
+    input:
+        boundary="results/boundary/ref.csv",
+    output:
+        pdf=report(
+            "results/fig6/critical_frequency.pdf",
+            caption="../report/fig6.rst",
+            category="Figures",
+        ),
+        png="results/fig6/critical_frequency.png",
+        fit="results/fig6/fit.json",
+    params:
+        threshold=config["main_threshold"],
+    log:
+        "logs/fig6.log",
+    benchmark:
+        "benchmarks/fig6.tsv"
+    script:
+        "../scripts/fig6.py"
+
+
+rule figD9:
+    input:
+        ref="results/boundary/ref.csv",
+        beams=expand("results/boundary/{beam}.csv", beam=sorted(FIG7_BEAMS)),
+        cfit="results/tables/c_per_threshold.csv",
+    output:
+        pdf=report(
+            "results/figD9/thresholds.pdf",
+            caption="../report/figD9.rst",
+            category="Figures",
+        ),
+        png="results/figD9/thresholds.png",
+    log:
+        "logs/figD9.log",
+    benchmark:
+        "benchmarks/figD9.tsv"
+    script:
+        "../scripts/figD9.py"
+
+
+rule fig7:
+    input:
+        beams=expand("results/boundary/{beam}.csv", beam=sorted(FIG7_BEAMS)),
+    output:
+        pdf=report(
+            "results/fig7/collapse.pdf",
+            caption="../report/fig7.rst",
+            category="Figures",
+        ),
+        png="results/fig7/collapse.png",
+        fit="results/fig7/fit.json",
+    params:
+        threshold=config["main_threshold"],
+    log:
+        "logs/fig7.log",
+    benchmark:
+        "benchmarks/fig7.tsv"
+    script:
+        "../scripts/fig7.py"

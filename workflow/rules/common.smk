@@ -1,0 +1,62 @@
+from snakemake.utils import validate
+
+from rotbeam.params import RotbeamInputError
+from rotbeam.studies import (
+    REF,
+    check_config,
+    fig7_beams,
+    lines_from_config,
+    series_from_config,
+)
+
+
+validate(config, schema="../schemas/config.schema.yaml")
+try:
+    check_config(config)
+except RotbeamInputError as exc:
+    raise ValueError(f"invalid config: {exc}") from None
+
+LINES = lines_from_config(config)
+SERIES = series_from_config(config)
+FIG7_BEAMS = fig7_beams(config)
+
+
+wildcard_constraints:
+    beam="[A-Za-z0-9_.+-]+",
+    line="[A-Za-z0-9_.+-]+",
+    name="[A-Za-z0-9_.+-]+",
+
+
+def line_spec(wildcards):
+    return LINES[(wildcards.beam, wildcards.line)]
+
+
+def boundary_line_files(beam):
+    return sorted(
+        f"results/sims/{b}/{line}.csv"
+        for (b, line) in LINES
+        if b == beam and line.startswith("cmax")
+    )
+
+
+def figure(stem):
+    return [f"results/{stem}.pdf", f"results/{stem}.png"]
+
+
+def all_targets():
+    figs = [
+        "fig1/drive_profiles",
+        "fig2/shapes_lab_frame",
+        "fig3/resonance",
+        "fig4/dynamic_vs_quasistatic",
+        "fig5/phase_diagram",
+        "fig6/critical_frequency",
+        "fig7/collapse",
+        "figB8/convergence",
+        "figD9/thresholds",
+        "figE10/c0_vs_zeta",
+    ]
+    tables = ["table1", "systems", "c0_threshold", "c_per_threshold", "boundary_ref"]
+    out = [f for stem in figs for f in figure(stem)]
+    out += [f"results/tables/{t}.{ext}" for t in tables for ext in ("csv", "md")]
+    return out

@@ -1,0 +1,56 @@
+# Tables that need no simulation.
+
+
+rule table1:
+    output:
+        csv="results/tables/table1.csv",
+        md=report(
+            "results/tables/table1.md",
+            caption="../report/table1.rst",
+            category="Tables",
+        ),
+    params:
+        beam=config["beam"],
+    log:
+        "logs/table1.log",
+    benchmark:
+        "benchmarks/table1.tsv"
+    script:
+        "../scripts/table1.py"
+
+
+rule systems_table:
+    output:
+        csv="results/tables/systems.csv",
+        md=report(
+            "results/tables/systems.md",
+            caption="../report/systems.rst",
+            category="Tables",
+        ),
+    params:
+        beam=config["beam"],
+    log:
+        "logs/systems_table.log",
+    benchmark:
+        "benchmarks/systems_table.tsv"
+    script:
+        "../scripts/systems_table.py"
+
+
+rule c0_table:
+    output:
+        csv="results/tables/c0_threshold.csv",
+        md=report(
+            "results/tables/c0_threshold.md",
+            caption="../report/c0_threshold.rst",
+            category="Tables",
+        ),
+    params:
+        thresholds=config["c0_thresholds"],
+        beam=config["beam"],
+    log:
+        "logs/c0_table.log",
+    benchmark:
+        "benchmarks/c0_table.tsv"
+    script:
+        "../scripts/c0_table.py"

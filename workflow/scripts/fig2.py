@@ -1,0 +1,9 @@
+"""Fig. 2c stand-in: simulated lab-frame shapes over one period."""
+
+# ruff: noqa: F821
+# (`snakemake` is injected by Snakemake)
+import pandas as pd
+
+from rotbeam.figures import fig2_shapes
+
+fig2_shapes(pd.read_csv(snakemake.input[0]), snakemake.output.pdf, snakemake.output.png)

@@ -1,0 +1,12 @@
+"""Fig. 3: resonance curve, time series, power spectrum."""
+
+# ruff: noqa: F821
+# (`snakemake` is injected by Snakemake)
+import pandas as pd
+
+from rotbeam.figures import fig3_resonance
+
+fig3_resonance(
+    pd.read_csv(snakemake.input.line), pd.read_csv(snakemake.input.series),
+    snakemake.output.pdf, snakemake.output.png,
+)  # fmt: skip

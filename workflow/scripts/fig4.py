@@ -1,0 +1,15 @@
+"""Fig. 4: dynamic vs quasi-static RMS and Delta RMS at two mean speeds."""
+
+# ruff: noqa: F821
+# (`snakemake` is injected by Snakemake)
+import pandas as pd
+
+from rotbeam.boundary import boundary_table
+from rotbeam.figures import fig4_compare
+from rotbeam.io import write_csv
+
+lines = [pd.read_csv(f) for f in snakemake.input.lines]
+th = snakemake.params.threshold
+crit = boundary_table(lines, [th], snakemake.params.beam)
+write_csv(crit, snakemake.output.table)
+fig4_compare(lines, crit, th, snakemake.output.pdf, snakemake.output.png)

@@ -1,0 +1,16 @@
+"""Fig. 6: f_0, f_d* and the fitted c f_0 vs C_max."""
+
+# ruff: noqa: F821
+# (`snakemake` is injected by Snakemake)
+import numpy as np
+import pandas as pd
+
+from rotbeam.boundary import fit_c
+from rotbeam.figures import fig6_critical
+from rotbeam.io import write_json
+
+b = pd.read_csv(snakemake.input.boundary)
+th = snakemake.params.threshold
+fit = fit_c(b[np.isclose(b["threshold"], th)])
+write_json(fit, snakemake.output.fit)
+fig6_critical(b, th, fit["c"], fit["c_stderr"], snakemake.output.pdf, snakemake.output.png)

@@ -1,0 +1,16 @@
+"""Fig. 7: boundary over a grid of beams and its collapse on Eq. (scaled_analytical_sol)."""
+
+# ruff: noqa: F821
+# (`snakemake` is injected by Snakemake)
+import numpy as np
+import pandas as pd
+
+from rotbeam.boundary import fit_c
+from rotbeam.figures import fig7_collapse
+from rotbeam.io import write_json
+
+b = pd.concat([pd.read_csv(f) for f in snakemake.input.beams], ignore_index=True)
+b = b[np.isclose(b["threshold"], snakemake.params.threshold)]
+fit = fit_c(b)
+write_json(fit, snakemake.output.fit)
+fig7_collapse(b, fit["c"], snakemake.output.pdf, snakemake.output.png)

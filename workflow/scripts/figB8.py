@@ -1,0 +1,12 @@
+"""Fig. B.8: convergence of RMS(y_m) with N."""
+
+# ruff: noqa: F821
+# (`snakemake` is injected by Snakemake)
+import pandas as pd
+
+from rotbeam.figures import figB8_convergence
+from rotbeam.io import write_csv
+
+df = pd.concat([pd.read_csv(f) for f in snakemake.input], ignore_index=True)
+write_csv(df, snakemake.output.table)
+figB8_convergence(df, snakemake.output.pdf, snakemake.output.png)

@@ -1,0 +1,34 @@
+"""One scene whose dynamic and quasi-static time series are kept (Fig. 3b,c; Fig. 5b,c)."""
+# ruff: noqa: F821
+# (`snakemake` is injected by Snakemake)
+
+from dataclasses import replace
+
+import pandas as pd
+
+from rotbeam.io import write_csv
+from rotbeam.params import Beam, Drive, Effects
+from rotbeam.scene import Scene, simulate
+from rotbeam.sweeps import numerics_from_config
+
+spec = snakemake.params.spec
+num = numerics_from_config(snakemake.params.numerics)
+num = replace(
+    num, rms_periods=int(spec["periods"]), samples_per_period=max(64, num.samples_per_period)
+)
+scene = Scene(
+    Beam(**spec["beam"]),
+    Drive(spec["omega0"], spec["amplitude"], spec["f_d"]),
+    Effects.from_list(snakemake.params.effects),
+    num,
+)
+with open(snakemake.log[0], "w") as log:
+    res = simulate(scene)
+    s = res.summary()
+    print({k: s[k] for k in ("rms_dynamic", "rms_quasistatic", "delta_rms", "converged",
+                             "message", "C_max", "E_max", "seconds")}, file=log)  # fmt: skip
+    df = pd.DataFrame(res.time_series())
+    for key in ("rms_dynamic", "rms_quasistatic", "delta_rms", "C_max", "E_max", "f_d", "omega0",
+                "f_n_hz", "converged"):  # fmt: skip
+        df[key] = s[key]
+    write_csv(df, snakemake.output[0])

@@ -1,0 +1,26 @@
+"""Centerline shapes over one drive period in the rotating and the lab frame (Fig. 2c)."""
+# ruff: noqa: F821
+# (`snakemake` is injected by Snakemake)
+
+from dataclasses import replace
+
+from rotbeam.io import write_csv
+from rotbeam.params import Beam, Drive, Effects
+from rotbeam.scene import Scene, simulate
+from rotbeam.shapes import shapes_over_period
+from rotbeam.sweeps import numerics_from_config
+
+p = snakemake.params
+num = replace(
+    numerics_from_config(p.numerics),
+    rms_periods=1,
+    samples_per_period=max(8, 4 * p.drive["frames"]),
+)
+scene = Scene(
+    Beam(**p.beam), Drive(p.drive["omega0"], p.amplitude, p.drive["f_d"]),
+    Effects.from_list(p.effects), num,
+)  # fmt: skip
+with open(snakemake.log[0], "w") as log:
+    res = simulate(scene)
+    print(res.summary(), file=log)
+    write_csv(shapes_over_period(res, p.drive["frames"]), snakemake.output[0])

@@ -1,0 +1,13 @@
+"""Table (systems) of App. E evaluated where the reference beam defines it."""
+
+# ruff: noqa: F821
+# (`snakemake` is injected by Snakemake)
+import pandas as pd
+
+from rotbeam.io import write_table
+from rotbeam.params import Beam
+from rotbeam.secondorder import systems_table
+
+df = pd.DataFrame(systems_table(Beam(**snakemake.params.beam)))
+write_table(df, snakemake.output.csv, snakemake.output.md,
+            "Table (systems): zeta, k, f_n; the beam row for the reference beam.")  # fmt: skip
