@@ -145,7 +145,7 @@ def fig5_phase(
         a.plot(s["C_max"].iloc[0], s["E_max"].iloc[0], "s", color=DYN)
     a.set_xlabel(r"$\mathcal{C}_{max}$")
     a.set_ylabel(r"$\mathcal{E}^\star$")
-    a.legend(loc="upper left")
+    a.legend(loc="lower right")
     panel_label(a, "(a)")
     for k, s in enumerate(series):
         ax = fig.add_subplot(gs[k, 1])
