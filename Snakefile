@@ -3,7 +3,9 @@
 #   snakemake --cores all --configfile config/quick.yaml   low resolution, minutes
 import os
 
-os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")  # one BLAS thread per job: jobs run in parallel
+os.environ.setdefault(
+    "OPENBLAS_NUM_THREADS", "1"
+)  # one BLAS thread per job: jobs run in parallel
 os.environ.setdefault("OMP_NUM_THREADS", "1")
 
 
@@ -21,6 +23,6 @@ include: "workflow/rules/tables.smk"
 
 
 rule all:
+    default_target: True
     input:
         all_targets(),
-    default_target: True

@@ -137,3 +137,22 @@ def scan_frequencies(spec: dict[str, Any]) -> list[float]:
         Beam(**spec["beam"]), spec["omega0"], s["lo"], s["hi"], s["points"], spec["amplitude"]
     )
     return [float(x) for x in f if math.isfinite(x)]
+
+
+def coerce_numbers(value: Any) -> Any:
+    """Numbers given as strings (``--config thresholds=[0.05,0.2]`` arrives as ['0.05', '0.2'])
+    become numbers; everything else is left for the schema to judge."""
+    if isinstance(value, dict):
+        return {k: coerce_numbers(v) for k, v in value.items()}
+    if isinstance(value, list):
+        return [coerce_numbers(v) for v in value]
+    if isinstance(value, str):
+        text = value.strip()
+        for cast in (int, float):
+            try:
+                return cast(text)
+            except ValueError:
+                pass
+        if text.lower() in ("true", "false"):
+            return text.lower() == "true"
+    return value

@@ -6,13 +6,15 @@ rule boundary_table:
         lambda w: boundary_line_files(w.beam),
     output:
         "results/boundary/{beam}.csv",
-    params:
-        thresholds=sorted(set(config["thresholds"]) | {config["main_threshold"]}),
-        beam=lambda w: config["beam"] if w.beam == REF else FIG7_BEAMS[w.beam],
     log:
         "logs/boundary_table/{beam}.log",
     benchmark:
         "benchmarks/boundary_table/{beam}.tsv"
+    conda:
+        "../envs/rotbeam.yaml"
+    params:
+        thresholds=sorted(set(config["thresholds"]) | {config["main_threshold"]}),
+        beam=lambda w: config["beam"] if w.beam == REF else FIG7_BEAMS[w.beam],
     script:
         "../scripts/boundary_table.py"
 
@@ -34,6 +36,8 @@ rule c_per_threshold:
         "logs/c_per_threshold.log",
     benchmark:
         "benchmarks/c_per_threshold.tsv"
+    conda:
+        "../envs/rotbeam.yaml"
     script:
         "../scripts/c_per_threshold.py"
 
@@ -52,12 +56,14 @@ rule fig5:
             category="Figures",
         ),
         png="results/fig5/phase_diagram.png",
-    params:
-        threshold=config["main_threshold"],
     log:
         "logs/fig5.log",
     benchmark:
         "benchmarks/fig5.tsv"
+    conda:
+        "../envs/rotbeam.yaml"
+    params:
+        threshold=config["main_threshold"],
     script:
         "../scripts/fig5.py"
 
@@ -73,12 +79,14 @@ rule fig6:
         ),
         png="results/fig6/critical_frequency.png",
         fit="results/fig6/fit.json",
-    params:
-        threshold=config["main_threshold"],
     log:
         "logs/fig6.log",
     benchmark:
         "benchmarks/fig6.tsv"
+    conda:
+        "../envs/rotbeam.yaml"
+    params:
+        threshold=config["main_threshold"],
     script:
         "../scripts/fig6.py"
 
@@ -99,6 +107,8 @@ rule figD9:
         "logs/figD9.log",
     benchmark:
         "benchmarks/figD9.tsv"
+    conda:
+        "../envs/rotbeam.yaml"
     script:
         "../scripts/figD9.py"
 
@@ -114,11 +124,13 @@ rule fig7:
         ),
         png="results/fig7/collapse.png",
         fit="results/fig7/fit.json",
-    params:
-        threshold=config["main_threshold"],
     log:
         "logs/fig7.log",
     benchmark:
         "benchmarks/fig7.tsv"
+    conda:
+        "../envs/rotbeam.yaml"
+    params:
+        threshold=config["main_threshold"],
     script:
         "../scripts/fig7.py"

@@ -4,12 +4,13 @@ from rotbeam.params import RotbeamInputError
 from rotbeam.studies import (
     REF,
     check_config,
+    coerce_numbers,
     fig7_beams,
     lines_from_config,
     series_from_config,
 )
 
-
+config.update(coerce_numbers(dict(config)))
 validate(config, schema="../schemas/config.schema.yaml")
 try:
     check_config(config)

@@ -9,13 +9,15 @@ rule fig1:
             category="Figures",
         ),
         png="results/fig1/drive_profiles.png",
-    params:
-        drive=config["fig1"],
-        amplitude=config["amplitude"],
     log:
         "logs/fig1.log",
     benchmark:
         "benchmarks/fig1.tsv"
+    conda:
+        "../envs/rotbeam.yaml"
+    params:
+        drive=config["fig1"],
+        amplitude=config["amplitude"],
     script:
         "../scripts/fig1.py"
 
@@ -34,6 +36,8 @@ rule fig2:
         "logs/fig2.log",
     benchmark:
         "benchmarks/fig2.tsv"
+    conda:
+        "../envs/rotbeam.yaml"
     script:
         "../scripts/fig2.py"
 
@@ -53,6 +57,8 @@ rule fig3:
         "logs/fig3.log",
     benchmark:
         "benchmarks/fig3.tsv"
+    conda:
+        "../envs/rotbeam.yaml"
     script:
         "../scripts/fig3.py"
 
@@ -71,13 +77,15 @@ rule fig4:
         ),
         png="results/fig4/dynamic_vs_quasistatic.png",
         table="results/fig4/critical.csv",
-    params:
-        threshold=config["main_threshold"],
-        beam=config["beam"],
     log:
         "logs/fig4.log",
     benchmark:
         "benchmarks/fig4.tsv"
+    conda:
+        "../envs/rotbeam.yaml"
+    params:
+        threshold=config["main_threshold"],
+        beam=config["beam"],
     script:
         "../scripts/fig4.py"
 
@@ -101,6 +109,8 @@ rule figB8:
         "logs/figB8.log",
     benchmark:
         "benchmarks/figB8.tsv"
+    conda:
+        "../envs/rotbeam.yaml"
     script:
         "../scripts/figB8.py"
 
@@ -113,12 +123,14 @@ rule figE10:
             category="Figures",
         ),
         png="results/figE10/c0_vs_zeta.png",
-    params:
-        spec=config["figE10"],
-        beam=config["beam"],
     log:
         "logs/figE10.log",
     benchmark:
         "benchmarks/figE10.tsv"
+    conda:
+        "../envs/rotbeam.yaml"
+    params:
+        spec=config["figE10"],
+        beam=config["beam"],
     script:
         "../scripts/figE10.py"

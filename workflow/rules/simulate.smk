@@ -4,14 +4,16 @@
 rule sweep_line:
     output:
         "results/sims/{beam}/{line}.csv",
-    params:
-        spec=line_spec,
-        numerics=config["numerics"],
-        effects=config["effects"],
     log:
         "logs/sweep_line/{beam}/{line}.log",
     benchmark:
         "benchmarks/sweep_line/{beam}/{line}.tsv"
+    conda:
+        "../envs/rotbeam.yaml"
+    params:
+        spec=line_spec,
+        numerics=config["numerics"],
+        effects=config["effects"],
     script:
         "../scripts/sweep_line.py"
 
@@ -19,14 +21,16 @@ rule sweep_line:
 rule scene_series:
     output:
         "results/series/{name}.csv",
-    params:
-        spec=lambda w: SERIES[w.name],
-        numerics=config["numerics"],
-        effects=config["effects"],
     log:
         "logs/scene_series/{name}.log",
     benchmark:
         "benchmarks/scene_series/{name}.tsv"
+    conda:
+        "../envs/rotbeam.yaml"
+    params:
+        spec=lambda w: SERIES[w.name],
+        numerics=config["numerics"],
+        effects=config["effects"],
     script:
         "../scripts/scene_series.py"
 
@@ -34,15 +38,17 @@ rule scene_series:
 rule shapes:
     output:
         "results/series/shapes_fig2.csv",
+    log:
+        "logs/shapes/fig2.log",
+    benchmark:
+        "benchmarks/shapes/fig2.tsv"
+    conda:
+        "../envs/rotbeam.yaml"
     params:
         beam=config["beam"],
         drive=config["fig2"],
         amplitude=config["amplitude"],
         numerics=config["numerics"],
         effects=config["effects"],
-    log:
-        "logs/shapes/fig2.log",
-    benchmark:
-        "benchmarks/shapes/fig2.tsv"
     script:
         "../scripts/shapes.py"

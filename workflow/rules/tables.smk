@@ -9,12 +9,14 @@ rule table1:
             caption="../report/table1.rst",
             category="Tables",
         ),
-    params:
-        beam=config["beam"],
     log:
         "logs/table1.log",
     benchmark:
         "benchmarks/table1.tsv"
+    conda:
+        "../envs/rotbeam.yaml"
+    params:
+        beam=config["beam"],
     script:
         "../scripts/table1.py"
 
@@ -27,12 +29,14 @@ rule systems_table:
             caption="../report/systems.rst",
             category="Tables",
         ),
-    params:
-        beam=config["beam"],
     log:
         "logs/systems_table.log",
     benchmark:
         "benchmarks/systems_table.tsv"
+    conda:
+        "../envs/rotbeam.yaml"
+    params:
+        beam=config["beam"],
     script:
         "../scripts/systems_table.py"
 
@@ -45,12 +49,14 @@ rule c0_table:
             caption="../report/c0_threshold.rst",
             category="Tables",
         ),
-    params:
-        thresholds=config["c0_thresholds"],
-        beam=config["beam"],
     log:
         "logs/c0_table.log",
     benchmark:
         "benchmarks/c0_table.tsv"
+    conda:
+        "../envs/rotbeam.yaml"
+    params:
+        thresholds=config["c0_thresholds"],
+        beam=config["beam"],
     script:
         "../scripts/c0_table.py"

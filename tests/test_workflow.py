@@ -1,0 +1,121 @@
+"""End to end: the quick config through Snakemake in a temporary copy of the workflow."""
+
+import json
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pandas as pd
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+SNAKEMAKE = [sys.executable, "-m", "snakemake"]
+
+
+def targets(workdir: Path) -> list[Path]:
+    figs = [
+        "fig1/drive_profiles",
+        "fig2/shapes_lab_frame",
+        "fig3/resonance",
+        "fig4/dynamic_vs_quasistatic",
+        "fig5/phase_diagram",
+        "fig6/critical_frequency",
+        "fig7/collapse",
+        "figB8/convergence",
+        "figD9/thresholds",
+        "figE10/c0_vs_zeta",
+    ]
+    tables = ["table1", "systems", "c0_threshold", "c_per_threshold", "boundary_ref"]
+    out = [workdir / "results" / f"{f}.{e}" for f in figs for e in ("pdf", "png")]
+    out += [workdir / "results" / "tables" / f"{t}.{e}" for t in tables for e in ("csv", "md")]
+    return out
+
+
+@pytest.fixture(scope="module")
+def quick_run(tmp_path_factory):
+    work = tmp_path_factory.mktemp("wf")
+    shutil.copy(ROOT / "Snakefile", work)
+    shutil.copytree(ROOT / "config", work / "config")
+    shutil.copytree(ROOT / "workflow", work / "workflow")
+    p = subprocess.run(
+        [*SNAKEMAKE, "--cores", "2", "--configfile", "config/quick.yaml"],
+        cwd=work,
+        capture_output=True,
+        text=True,
+        timeout=900,
+    )
+    assert p.returncode == 0, p.stderr[-3000:]
+    return work
+
+
+def test_every_target_exists_and_is_not_empty(quick_run):
+    missing = [str(t) for t in targets(quick_run) if not t.is_file() or t.stat().st_size == 0]
+    assert not missing
+
+
+def test_fitted_c_per_threshold(quick_run):
+    t = pd.read_csv(quick_run / "results/tables/c_per_threshold.csv").sort_values("threshold")
+    c, err = t["ref_c_root"].to_numpy(), t["ref_c_root_stderr"].to_numpy()
+    assert ((c > 0) & (c < 1)).all() and (err >= 0).all() and pd.notna(err).all()
+    assert (c[1:] > c[:-1]).all(), "a larger threshold must give a larger c"
+    fit = json.loads((quick_run / "results/fig6/fit.json").read_text())
+    assert 0 < fit["c"] < 1 and fit["c_stderr"] < 0.1
+
+
+def dry_run_jobs(work: Path, *extra: str) -> dict[str, int]:
+    p = subprocess.run(
+        [*SNAKEMAKE, "-n", "--cores", "1", "--configfile", "config/quick.yaml", *extra],
+        cwd=work,
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
+    assert p.returncode == 0, p.stderr[-3000:]
+    jobs, in_stats = {}, False
+    for line in p.stdout.splitlines():
+        if line.startswith("job ") and "count" in line:
+            in_stats = True
+            continue
+        if in_stats:
+            parts = line.split()
+            if not parts or parts[0] == "total":
+                break
+            if parts[0].startswith("---"):
+                continue
+            jobs[parts[0]] = int(parts[1])
+    return jobs
+
+
+def test_nothing_to_do_after_a_complete_run(quick_run):
+    assert dry_run_jobs(quick_run) == {}
+
+
+def test_changing_a_threshold_reruns_no_simulation(quick_run):
+    jobs = dry_run_jobs(quick_run, "--config", "thresholds=[0.05,0.2]")
+    assert jobs.get("boundary_table", 0) > 0 and jobs.get("c_per_threshold", 0) == 1
+    for sim in ("sweep_line", "scene_series", "shapes"):
+        assert sim not in jobs, jobs
+
+
+def test_changing_the_grid_reruns_simulations(quick_run):
+    jobs = dry_run_jobs(quick_run, "--config", "numerics={'N': 14}")
+    assert jobs.get("sweep_line", 0) > 0
+
+
+def test_bad_config_stops_before_any_job(tmp_path, quick_run):
+    bad = tmp_path / "bad.yaml"
+    bad.write_text(
+        (quick_run / "config/quick.yaml")
+        .read_text()
+        .replace("main_threshold: 0.10", "main_threshold: 1.5")
+    )
+    p = subprocess.run(
+        [*SNAKEMAKE, "-n", "--cores", "1", "--configfile", str(bad)],
+        cwd=quick_run,
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
+    assert p.returncode != 0
+    assert "main_threshold" in (p.stdout + p.stderr)
