@@ -30,6 +30,12 @@ from .periodic import PeriodicResult, solve_periodic_adaptive, trig_interpolate
 from .quasistatic import quasistatic_series
 
 METHODS = ("Radau", "BDF", "LSODA")
+
+
+class _OutOfTime(Exception):
+    """Raised inside the right-hand side when the wall-time budget is spent."""
+
+
 STARTS = ("periodic", "linear", "quasistatic", "rest")
 
 
@@ -45,6 +51,7 @@ class Numerics:
     samples_per_period: int = 64
     max_periods: int = 2000  #: give up after this many periods
     max_tau: float = 2000.0  #: ... or after this much dimensionless time
+    max_seconds: float = 900.0  #: ... or after this much wall time (then: no steady state)
     start: str = "periodic"  #: initial state: "periodic", "linear", "quasistatic" or "rest"
     tail_tol: float = 1e-3  #: harmonic tail of the periodic (collocation) start
     integrate: bool = True  #: verify the collocation orbit by time stepping (False: trust it)
@@ -75,6 +82,8 @@ class Numerics:
             raise RotbeamInputError(
                 f"numerics.tail_tol must be in [1e-12, 0.1], got {self.tail_tol!r}"
             )
+        if not isinstance(self.max_seconds, (int, float)) or not (self.max_seconds > 0):
+            raise RotbeamInputError(f"numerics.max_seconds must be > 0, got {self.max_seconds!r}")
         if not isinstance(self.max_tau, (int, float)) or not (self.max_tau > 0):
             raise RotbeamInputError(f"numerics.max_tau must be > 0, got {self.max_tau!r}")
 
@@ -118,7 +127,7 @@ def initial_state(
         res = solve_periodic_adaptive(dl, model.grid.N, tail_tol=tail_tol, guess=guess)
         if res.converged:
             return np.concatenate([res.theta[:, 0], res.theta_t[:, 0]]), res
-        start = "linear"  # fall back; the time stepping still decides
+        start = "quasistatic"  # fall back to a physical state; the time stepping still decides
     if start == "linear":
         amp, _ = linear_forced_response(dl, model.grid.N)
         return np.concatenate([amp.real, -dl.omega * amp.imag]), None
@@ -187,7 +196,11 @@ def steady_state(
 
     nfev = njev = 0
 
+    deadline = t0 + num.max_seconds
+
     def rhs(tau, z):
+        if time.perf_counter() > deadline:
+            raise _OutOfTime
         acc, _, _ = model.acceleration(z[:n], z[n:], dl.lam(tau), dl.lam_dot(tau))
         return np.concatenate([z[n:], acc])
 
@@ -195,26 +208,42 @@ def steady_state(
         return model.first_order_jacobian(z[:n], z[n:], dl.lam(tau), dl.lam_dot(tau))
 
     def run(tau_a, tau_b, z_a, t_eval):
+        """solve_ivp over [tau_a, tau_b]; None when the wall-time budget ran out."""
         nonlocal nfev, njev
-        sol = solve_ivp(
-            rhs, (tau_a, tau_b), z_a, method=num.method, rtol=rtol, atol=atol,
-            jac=jac, t_eval=t_eval,
-        )  # fmt: skip
+        try:
+            sol = solve_ivp(
+                rhs, (tau_a, tau_b), z_a, method=num.method, rtol=rtol, atol=atol,
+                jac=jac, t_eval=t_eval,
+            )  # fmt: skip
+        except _OutOfTime:
+            return None
         nfev += sol.nfev
         njev += sol.njev
         return sol
+
+    def out_of_time(k: int) -> str:
+        return (
+            f"no steady state within the time budget of {num.max_seconds:g} s "
+            f"({k} whole periods, tau={k * P:.4g}); remaining transient bound {bound:.3g}"
+        )
 
     history: list[float] = []
     k = 0
     converged = False
     status, message = 1, ""
     bound = math.inf
+    seen_tau, seen_theta = np.array([0.0]), z[:n, None].copy()  # what we saw last
     max_periods = min(num.max_periods, max(2, int(num.max_tau / P)))
     while k < max_periods:
-        sol = run(k * P, (k + 1) * P, z, None)
-        if sol.status < 0 or not np.all(np.isfinite(sol.y[:, -1])):
+        taus_k = period_samples(dl, k, 1, m)
+        sol = run(k * P, (k + 1) * P, z, np.append(taus_k, (k + 1) * P))
+        if sol is None:
+            message = out_of_time(k)
+            break
+        if sol.status < 0 or not np.all(np.isfinite(sol.y)):
             status, message = -1, f"integrator failed in period {k + 1}: {sol.message}"
             break
+        seen_tau, seen_theta = sol.t[:-1], sol.y[:n, :-1]
         z_new = sol.y[:, -1]
         k += 1
         size = max(float(np.max(np.abs(sol.y[:n]))), 1e-300)
@@ -242,19 +271,18 @@ def steady_state(
             + ("; undamped model has no steady state" if model.eta == 0 else "")
         )
 
-    if status == -1:
-        taus = np.array([k * P])
-        theta = z[:n, None]
-    else:
-        taus = period_samples(dl, k, num.rms_periods, m)
-        t_end = (k + num.rms_periods) * P
-        sol = run(k * P, t_end, z, taus)
-        if sol.status < 0 or sol.y.shape[1] != taus.size or not np.all(np.isfinite(sol.y)):
+    taus, theta = seen_tau, seen_theta
+    if status == 0:
+        window = period_samples(dl, k, num.rms_periods, m)
+        sol = run(k * P, (k + num.rms_periods) * P, z, window)
+        if sol is None:
+            status, converged, message = 1, False, out_of_time(k) + " (in the RMS window)"
+        elif sol.status < 0 or sol.y.shape[1] != window.size or not np.all(np.isfinite(sol.y)):
             status, converged = -1, False
             message = f"integrator failed in the RMS window: {sol.message}"
-            taus = sol.t
-        theta = sol.y[:n]
-        k += num.rms_periods
+        else:
+            taus, theta = window, sol.y[:n]
+            k += num.rms_periods
     y_m = model.grid.midspan(theta)
     return SteadyState(
         tau=taus,

@@ -185,12 +185,26 @@ def trig_interpolate(X: np.ndarray, m: int) -> np.ndarray:
     return np.fft.irfft(C, n=m, axis=0) * (m / M)
 
 
+def _amplitude_continuation(dl: Dimensionless, N: int, M: int, rtol: float, steps: int = 6):
+    """Follow the orbit from a small drive amplitude up to the real one (large responses)."""
+    from dataclasses import replace
+
+    X = None
+    for k in range(1, steps + 1):
+        res = solve_periodic(replace(dl, alpha=dl.alpha * k / steps), N, M, guess=X, rtol=rtol)
+        if not res.converged:
+            return None
+        X = res.theta.T
+    res.message += f" (amplitude continuation in {steps} steps)"
+    return res
+
+
 def solve_periodic_adaptive(
     dl: Dimensionless,
     N: int = 40,
     M0: int = 17,
     tail_tol: float = 1e-5,
-    M_max: int = 129,
+    M_max: int = 65,
     rtol: float = 1e-10,
     guess: np.ndarray | None = None,
 ) -> PeriodicResult:
@@ -207,6 +221,8 @@ def solve_periodic_adaptive(
     res = solve_periodic(dl, N, M, guess=guess, rtol=rtol)
     if not res.converged and guess is not None:
         res = solve_periodic(dl, N, M, rtol=rtol)
+    if not res.converged:
+        res = _amplitude_continuation(dl, N, M, rtol) or res
     while res.converged and res.harmonic_tail > tail_tol and 2 * M - 1 <= M_max:
         guess = trig_interpolate(res.theta.T, 2 * M - 1)
         M = 2 * M - 1
