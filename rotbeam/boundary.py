@@ -32,7 +32,8 @@ def boundary_table(
             cr = critical_from_scan(df["f_d"].to_numpy(), df["delta_rms"].to_numpy(), th)
             e = b.G * a * 2.0 * math.pi
             rows.append({
-                "beam": beam_id, "E": b.E, "L": b.L, "h_over_L": b.h / b.L,
+                "beam": beam_id, "E": b.E, "L": b.L, "h_over_L": float(f"{b.h / b.L:.6g}"),
+                "zeta": b.zeta,
                 "omega0": float(first["omega0"]), "C_max": float(first["C_max"]),
                 "threshold": th, "f_n_hz": b.f_n, "f0_hz": float(first["f0_hz"]),
                 "f_d_grid": cr["f_d_grid"], "f_d_root": cr["f_d_root"],

@@ -230,6 +230,9 @@ def figD9_thresholds(boundary: pd.DataFrame, cfit: pd.DataFrame, pdf: str, png: 
     save(fig, pdf, png)
 
 
+ZETA_UNDERDAMPED = 0.2  #: beams above this damping ratio are drawn grey in Fig. 7
+
+
 def fig7_collapse(boundary: pd.DataFrame, c: float, pdf: str, png: str) -> None:
     """Fig. 7: (a) E* vs C_max per beam; (b) E*/E_n vs S_1 G a^2 C_max / E_n^2 with
     Eq. (scaled_analytical_sol), c sqrt(1 + x)."""
@@ -243,12 +246,16 @@ def fig7_collapse(boundary: pd.DataFrame, c: float, pdf: str, png: str) -> None:
     for (E, L, hl), sub in b2.groupby(["E", "L", "h_over_L"]):
         sub = sub.sort_values("C_max")
         col = cmap(hls.index(hl) / max(1, len(hls) - 1) * 0.85)
+        if "zeta" in sub and float(sub["zeta"].iloc[0]) > ZETA_UNDERDAMPED:
+            col = "0.65"  # overdamped or nearly: App. E's c is not expected to hold
         ms = 4 + 3 * Ls.index(L)
         kw = dict(marker=markers[E], color=col, ms=ms, mfc="none", ls="-", lw=0.6)
         a.loglog(sub["C_max"], sub["E_star_root"], **kw)
         b.loglog(sub["x"], sub["E_star_root"] / sub["E_n"], **kw)
     x = np.logspace(np.log10(max(b2["x"].min(), 1e-6)) - 0.3, np.log10(b2["x"].max()) + 0.3, 200)
     b.loglog(x, c * np.sqrt(1 + x), "k-", label=rf"$c\sqrt{{1+x}}$, c = {c:.3f}")
+    if "zeta" in b2 and (b2["zeta"] > ZETA_UNDERDAMPED).any():
+        b.plot([], [], "-", color="0.65", label=rf"grey: $\zeta$ > {ZETA_UNDERDAMPED:g}")
     for E, m in markers.items():
         a.plot([], [], m, color="k", mfc="none", label=f"E = {E:.0e} Pa")
     for hl in hls:

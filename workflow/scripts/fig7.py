@@ -6,11 +6,14 @@ import numpy as np
 import pandas as pd
 
 from rotbeam.boundary import fit_c
-from rotbeam.figures import fig7_collapse
+from rotbeam.figures import ZETA_UNDERDAMPED, fig7_collapse
 from rotbeam.io import write_json
 
 b = pd.concat([pd.read_csv(f) for f in snakemake.input.beams], ignore_index=True)
 b = b[np.isclose(b["threshold"], snakemake.params.threshold)]
-fit = fit_c(b)
+# c from the underdamped beams only (App. E: c is constant for zeta << 1)
+fit = fit_c(b[b["zeta"] <= ZETA_UNDERDAMPED])
+fit["zeta_max_used"] = ZETA_UNDERDAMPED
+fit["beams_excluded_overdamped"] = int(b.loc[b["zeta"] > ZETA_UNDERDAMPED, "beam"].nunique())
 write_json(fit, snakemake.output.fit)
 fig7_collapse(b, fit["c"], snakemake.output.pdf, snakemake.output.png)
