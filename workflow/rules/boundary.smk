@@ -3,7 +3,8 @@
 
 rule boundary_table:
     input:
-        lambda w: boundary_line_files(w.beam),
+        lines=lambda w: boundary_line_files(w.beam),
+        code=CODE_ANALYSIS,
     output:
         "results/boundary/{beam}.csv",
     log:
@@ -49,6 +50,7 @@ rule fig5:
             "results/series/fig5_E{e}.csv",
             e=[format(float(e), "g") for e in config["fig5"]["e_max"]],
         ),
+        code=CODE_FIGURES,
     output:
         pdf=report(
             "results/fig5/phase_diagram.pdf",
@@ -71,6 +73,7 @@ rule fig5:
 rule fig6:
     input:
         boundary="results/boundary/ref.csv",
+        code=CODE_FIGURES,
     output:
         pdf=report(
             "results/fig6/critical_frequency.pdf",
@@ -96,6 +99,7 @@ rule figD9:
         ref="results/boundary/ref.csv",
         beams=expand("results/boundary/{beam}.csv", beam=sorted(FIG7_BEAMS)),
         cfit="results/tables/c_per_threshold.csv",
+        code=CODE_FIGURES,
     output:
         pdf=report(
             "results/figD9/thresholds.pdf",
@@ -116,6 +120,7 @@ rule figD9:
 rule fig7:
     input:
         beams=expand("results/boundary/{beam}.csv", beam=sorted(FIG7_BEAMS)),
+        code=CODE_FIGURES,
     output:
         pdf=report(
             "results/fig7/collapse.pdf",

@@ -1,4 +1,8 @@
+from pathlib import Path
+
 from snakemake.utils import validate
+
+import rotbeam
 
 from rotbeam.params import RotbeamInputError
 from rotbeam.studies import (
@@ -26,6 +30,12 @@ wildcard_constraints:
     beam="[A-Za-z0-9_.+-]+",
     line="[A-Za-z0-9_.+-]+",
     name="[A-Za-z0-9_.+-]+",
+
+
+PKG = Path(rotbeam.__file__).parent
+# cheap downstream rules rerun when the package code they use changes
+CODE_ANALYSIS = [str(PKG / f) for f in ("boundary.py", "criterion.py")]
+CODE_FIGURES = [str(PKG / f) for f in ("figures.py", "plotting.py")]
 
 
 def line_spec(wildcards):

@@ -2,6 +2,8 @@
 
 
 rule fig1:
+    input:
+        code=CODE_FIGURES,
     output:
         pdf=report(
             "results/fig1/drive_profiles.pdf",
@@ -25,6 +27,7 @@ rule fig1:
 rule fig2:
     input:
         "results/series/shapes_fig2.csv",
+        code=CODE_FIGURES,
     output:
         pdf=report(
             "results/fig2/shapes_lab_frame.pdf",
@@ -46,6 +49,7 @@ rule fig3:
     input:
         line="results/sims/ref/fig3.csv",
         series="results/series/fig3.csv",
+        code=CODE_FIGURES,
     output:
         pdf=report(
             "results/fig3/resonance.pdf",
@@ -69,6 +73,7 @@ rule fig4:
             "results/sims/ref/fig4_w{w}.csv",
             w=[format(float(w), "g") for w in config["fig4"]["omega0"]],
         ),
+        code=CODE_FIGURES,
     output:
         pdf=report(
             "results/fig4/dynamic_vs_quasistatic.pdf",
@@ -92,11 +97,12 @@ rule fig4:
 
 rule figB8:
     input:
-        expand(
+        lines=expand(
             "results/sims/ref/conv_N{N}_w{w}.csv",
             N=config["convergence"]["N"],
             w=[format(float(w), "g") for w in config["convergence"]["omega0"]],
         ),
+        code=CODE_FIGURES,
     output:
         pdf=report(
             "results/figB8/convergence.pdf",
@@ -116,6 +122,8 @@ rule figB8:
 
 
 rule figE10:
+    input:
+        code=CODE_FIGURES,
     output:
         pdf=report(
             "results/figE10/c0_vs_zeta.pdf",

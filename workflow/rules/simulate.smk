@@ -14,6 +14,7 @@ rule sweep_line:
         spec=line_spec,
         numerics=config["numerics"],
         effects=config["effects"],
+        model_version=rotbeam.MODEL_VERSION,
     script:
         "../scripts/sweep_line.py"
 
@@ -31,6 +32,7 @@ rule scene_series:
         spec=lambda w: SERIES[w.name],
         numerics=config["numerics"],
         effects=config["effects"],
+        model_version=rotbeam.MODEL_VERSION,
     script:
         "../scripts/scene_series.py"
 
@@ -50,5 +52,6 @@ rule shapes:
         amplitude=config["amplitude"],
         numerics=config["numerics"],
         effects=config["effects"],
+        model_version=rotbeam.MODEL_VERSION,
     script:
         "../scripts/shapes.py"

@@ -7,7 +7,7 @@ import pandas as pd
 from rotbeam.boundary import boundary_table
 from rotbeam.io import write_csv
 
-lines = [pd.read_csv(f) for f in snakemake.input]
+lines = [pd.read_csv(f) for f in snakemake.input.lines]
 table = boundary_table(lines, snakemake.params.thresholds, snakemake.params.beam,
                        snakemake.wildcards.beam)  # fmt: skip
 with open(snakemake.log[0], "w") as log:

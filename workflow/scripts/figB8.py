@@ -7,6 +7,6 @@ import pandas as pd
 from rotbeam.figures import figB8_convergence
 from rotbeam.io import write_csv
 
-df = pd.concat([pd.read_csv(f) for f in snakemake.input], ignore_index=True)
+df = pd.concat([pd.read_csv(f) for f in snakemake.input.lines], ignore_index=True)
 write_csv(df, snakemake.output.table)
 figB8_convergence(df, snakemake.output.pdf, snakemake.output.png)
