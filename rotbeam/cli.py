@@ -106,7 +106,12 @@ def _write_series(path: str, series: dict[str, np.ndarray]) -> None:
     df = pd.DataFrame(series)
     tmp = out.with_name(out.name + ".part")
     if out.suffix == ".parquet":
-        df.to_parquet(tmp)
+        try:
+            df.to_parquet(tmp)
+        except ImportError:
+            raise RotbeamInputError(
+                "--out .parquet needs pyarrow or fastparquet (pip install pyarrow); use .csv"
+            ) from None
     elif out.suffix == ".csv":
         df.to_csv(tmp, index=False)
     else:

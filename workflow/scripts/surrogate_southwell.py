@@ -7,8 +7,8 @@ from pathlib import Path
 import pandas as pd
 
 from rotbeam.io import write_table
-from rotbeam.surrogate import southwell_coefficient
 from rotbeam.params import Beam
+from rotbeam.surrogate import southwell_coefficient
 from rotbeam.surrogate_figures import discretisation_floor, southwell_figure, southwell_table
 
 p = snakemake.params

@@ -5,13 +5,12 @@
 import json
 from pathlib import Path
 
-import numpy as np
 import pandas as pd
 
-from rotbeam.boundary import boundary_table
 from rotbeam.io import write_csv, write_json, write_table
 from rotbeam.params import Effects
 from rotbeam.surrogate_figures import (
+    full_critical,
     surrogate_boundary,
     surrogate_curve,
     validity_statement,
@@ -24,25 +23,12 @@ effects = Effects.from_list(p.effects)
 th = float(p.threshold)
 c_fit = float(json.loads(Path(snakemake.input.fit).read_text())["c"])
 fig4 = {Path(f).stem: pd.read_csv(f) for f in snakemake.input.fig4}
-bnd = {Path(f).stem: pd.read_csv(f) for f in snakemake.input.lines}
-
-# full model's f_d* (PCHIP root of the scan): fig4 lines as rule fig4 does, boundary lines from
-# the boundary table at the main threshold
-full_crit = {}
-for name, line in fig4.items():
-    crit = boundary_table([line], [th], p.beam)
-    full_crit[name] = float(crit["f_d_root"].iloc[0]) if not crit.empty else np.nan
-ref = pd.read_csv(snakemake.input.boundary)
-ref = ref[np.isclose(ref["threshold"], th)]
-for name, line in bnd.items():
-    row = ref[np.isclose(ref["omega0"], float(line["omega0"].iloc[0]))]
-    full_crit[name] = float(row["f_d_root"].iloc[0]) if not row.empty else np.nan
-
+lines = {Path(f).stem: pd.read_csv(f) for f in snakemake.input.lines}
+crit = full_critical(fig4, lines, pd.read_csv(snakemake.input.boundary), th, p.beam)
 table, points, speed = vs_full_table(
-    p.beam, {**fig4, **bnd}, full_crit, th, effects, p.n_scan, p.N, c_fit, p.tolerance
+    p.beam, {**fig4, **lines}, crit, th, effects, p.n_scan, p.N, c_fit, p.tolerance
 )
-statement = validity_statement(table, p.tolerance)
-speed["validity"] = statement
+speed["validity"] = validity_statement(table, p.tolerance)
 curves = [surrogate_curve(p.beam, line, effects, p.curve_points) for line in fig4.values()]
 boundary = surrogate_boundary(
     p.beam, table["C_max"].min(), table["C_max"].max(), p.boundary_points, th,
@@ -52,7 +38,7 @@ title = (
     f"Surrogate (one-mode Galerkin, Southwell stiffening) vs full model: f_d* per line at "
     f"Delta RMS = {th:g} (full: PCHIP root of its scan; surrogate: brentq on the model, and on "
     f"the full scan's points, `_grid`), E* of both and of Eq. (analytical_sol) with c = "
-    f"{c_fit:.4f} (fig6 fit). Measured: {statement}. Speed per point: surrogate "
+    f"{c_fit:.4f} (fig6 fit). Measured: {speed['validity']}. Time per point: surrogate "
     f"{speed['surrogate_seconds_per_point']:.3g} s, full {speed['full_seconds_per_point_mean']:.3g}"
     f" s (mean; N = {speed['full_N']})."
 )
