@@ -57,6 +57,7 @@ import functools
 
 import numpy as np
 import pytest
+
 from rotbeam.modes import dimensionless_frequencies
 
 GRIDS = (40, 80, 160)
