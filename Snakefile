@@ -20,6 +20,7 @@ include: "workflow/rules/simulate.smk"
 include: "workflow/rules/figures.smk"
 include: "workflow/rules/boundary.smk"
 include: "workflow/rules/tables.smk"
+include: "workflow/rules/surrogate.smk"
 
 
 rule all:

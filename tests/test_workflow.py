@@ -29,6 +29,11 @@ def targets(workdir: Path) -> list[Path]:
     tables = ["table1", "systems", "c0_threshold", "c_per_threshold", "boundary_ref"]
     out = [workdir / "results" / f"{f}.{e}" for f in figs for e in ("pdf", "png")]
     out += [workdir / "results" / "tables" / f"{t}.{e}" for t in tables for e in ("csv", "md")]
+    out += [
+        workdir / "results" / "surrogate" / f"{s}.{e}"
+        for s in ("southwell", "vs_full")
+        for e in ("csv", "md", "pdf", "png")
+    ]
     return out
 
 

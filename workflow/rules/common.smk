@@ -70,4 +70,10 @@ def all_targets():
     tables = ["table1", "systems", "c0_threshold", "c_per_threshold", "boundary_ref"]
     out = [f for stem in figs for f in figure(stem)]
     out += [f"results/tables/{t}.{ext}" for t in tables for ext in ("csv", "md")]
+    out += [
+        f"results/surrogate/{s}.{e}"
+        for s in ("southwell", "vs_full")
+        for e in ("csv", "md", "pdf", "png")
+    ]
+    out += ["results/surrogate/speed.json"]
     return out

@@ -1,11 +1,7 @@
 # One-mode Galerkin surrogate with Southwell stiffening (Sec. 6) beside the full model.
 # Cheap: no simulation of its own, the full model's numbers come from the sweep lines.
-from pathlib import Path
-
-import rotbeam
-
 SURROGATE_CODE = [
-    str(Path(rotbeam.__file__).parent / f)
+    str(PKG / f)
     for f in (
         "surrogate.py",
         "surrogate_figures.py",

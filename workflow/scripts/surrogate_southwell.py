@@ -35,4 +35,4 @@ with open(snakemake.log[0], "w") as log:
     print(title, file=log)
     print(table.to_string(), file=log)
 write_table(table, snakemake.output.csv, snakemake.output.md, title)
-southwell_figure(table, p.N, snakemake.output.pdf, snakemake.output.png)
+southwell_figure(table, p.beam, p.N, snakemake.output.pdf, snakemake.output.png)
