@@ -105,17 +105,15 @@ def _write_series(path: str, series: dict[str, np.ndarray]) -> None:
     out.parent.mkdir(parents=True, exist_ok=True)
     df = pd.DataFrame(series)
     tmp = out.with_name(out.name + ".part")
-    if out.suffix == ".parquet":
+    if out.suffix == ".parquet":  # suffix checked in cmd_simulate before the run
         try:
             df.to_parquet(tmp)
         except ImportError:
             raise RotbeamInputError(
                 "--out .parquet needs pyarrow or fastparquet (pip install pyarrow); use .csv"
             ) from None
-    elif out.suffix == ".csv":
-        df.to_csv(tmp, index=False)
     else:
-        raise RotbeamInputError(f"--out must end in .csv or .parquet, got {path!r}")
+        df.to_csv(tmp, index=False)
     tmp.replace(out)
 
 

@@ -5,12 +5,13 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 
+import matplotlib
 import numpy as np
 import pandas as pd
 
 from .criterion import power_spectrum
 from .params import Beam, Drive
-from .plotting import ACCENT, DYN, GREY, QS, figure, panel_label, save
+from .plotting import ACCENT, DYN, GREY, QS, apply_style, figure, panel_label, plt, save
 
 
 def fig1_drive(omega0: float, amplitude: float, f_d: float, pdf: str, png: str) -> None:
@@ -34,7 +35,7 @@ def fig2_shapes(shapes: pd.DataFrame, pdf: str, png: str) -> None:
     """Fig. 2c stand-in: lab-frame centerlines over one period, midspan marked."""
     fig, (a, b) = figure(1, 2, width=8.0, height=4.0)
     frames = sorted(shapes["frame"].unique())
-    cmap = __import__("matplotlib").colormaps["viridis"]
+    cmap = matplotlib.colormaps["viridis"]
     for k in frames:
         f = shapes[shapes["frame"] == k]
         col = cmap(k / max(1, len(frames) - 1))
@@ -132,7 +133,8 @@ def fig5_phase(
     boundary: pd.DataFrame, threshold: float, series: Sequence[pd.DataFrame], pdf: str, png: str
 ) -> None:
     """Fig. 5: E*(C_max) with the quasi-static region shaded; time series above/below."""
-    fig = __import__("matplotlib.pyplot", fromlist=["x"]).figure(figsize=(10, 4.0))
+    apply_style()
+    fig = plt.figure(figsize=(10, 4.0))
     gs = fig.add_gridspec(2, 2, width_ratios=[1.2, 1])
     a = fig.add_subplot(gs[:, 0])
     sub = boundary[np.isclose(boundary["threshold"], threshold)].sort_values("C_max")
@@ -239,7 +241,7 @@ def fig7_collapse(boundary: pd.DataFrame, c: float, pdf: str, png: str) -> None:
     fig, (a, b) = figure(1, 2, width=10.0, height=4.2)
     markers = dict(zip(sorted(boundary["E"].unique()), "osD^v<>ph", strict=False))
     hls = sorted(boundary["h_over_L"].unique())
-    cmap = __import__("matplotlib").colormaps["plasma"]
+    cmap = matplotlib.colormaps["plasma"]
     Ls = sorted(boundary["L"].unique())
     b2 = boundary.copy()
     b2["x"] = [_scaled_x(r) for _, r in b2.iterrows()]

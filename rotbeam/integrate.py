@@ -23,7 +23,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from .elastica import DiscreteElastica
+from .elastica import DiscreteElastica, _check_N
 from .modes import linear_forced_response
 from .params import Dimensionless, RotbeamInputError
 from .periodic import PeriodicResult, solve_periodic_adaptive, trig_interpolate
@@ -57,8 +57,6 @@ class Numerics:
     integrate: bool = True  #: verify the collocation orbit by time stepping (False: trust it)
 
     def __post_init__(self) -> None:
-        from .elastica import _check_N
-
         _check_N(self.N)
         if self.method not in METHODS:
             raise RotbeamInputError(

@@ -19,7 +19,7 @@ import math
 import numpy as np
 import scipy.linalg as sla
 
-from .elastica import DiscreteElastica
+from .elastica import DiscreteElastica, Grid
 from .params import Beam, Dimensionless, Effects, RotbeamInputError
 
 
@@ -73,16 +73,12 @@ def linear_forced_response(dl: Dimensionless, N: int) -> tuple[np.ndarray, np.nd
     and the (N-1,) load vector; used as a starting state close to the steady state.
     """
     ef = dl.effects
-    model = DiscreteElastica(N, dl.hub_ratio, dl.eta, ef)
     lam = dl.lam0 if ef.centrifugal else 0.0
-    stiff = DiscreteElastica(
-        N, dl.hub_ratio, 0.0, Effects(True, ef.softening, False, False, False)
-    ).static_jacobian(np.zeros(model.n), lam, 0.0)
-    W = model.grid.W
-    q = model.grid.Q @ (dl.hub_ratio + model.grid.s) if ef.euler else np.zeros(model.n)
+    W, stiff = linear_operators(N, dl.hub_ratio, lam, ef.softening)
+    grid = Grid.build(N)
+    q = grid.Q @ (dl.hub_ratio + grid.s) if ef.euler else np.zeros(grid.N - 1)
+    eta = dl.eta if ef.damping else 0.0
     w = dl.omega
-    A = stiff - w * w * W + 1j * w * model.eta * W
-    if ef.coriolis:
-        pass  # the gyroscopic matrix vanishes on the straight beam
-    rhs = -dl.alpha * w * q
-    return np.linalg.solve(A, rhs.astype(complex)), q
+    # the gyroscopic (Coriolis) matrix vanishes on the straight beam: no term here
+    A = stiff - w * w * W + 1j * w * eta * W
+    return np.linalg.solve(A, (-dl.alpha * w * q).astype(complex)), q

@@ -92,10 +92,8 @@ class Collocation:
         if not jacobian:
             return R
         J = np.zeros((M, n, M, n))
-        Ma = np.einsum("jik,jk->ji", Mm, a)
         Ba = np.einsum("jik,jk->ji", Bm, a)
         Mv = np.einsum("jik,jk->ji", Mm, v)
-        del Ma
         dv = 2.0 * V
         if m.effects.coriolis:
             dv = dv + 2.0 * self.lam[:, None]

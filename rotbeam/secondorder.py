@@ -128,54 +128,37 @@ def systems_table(
     nan = float("nan")
     rows: list[dict[str, Any]] = []
 
+    def row(system: str, formulas: tuple[str, str, str], values: tuple[float, ...] | None):
+        z, k, w = values if values is not None else (nan, nan, nan)
+        zf, kf, wf = formulas
+        return {"system": system, "zeta_formula": zf, "k_formula": kf, "f_n_formula": wf,
+                "zeta": z, "k": k, "f_n_table": w}  # fmt: skip
+
     ms = mass_spring or {}
+    ms_values = None
     if ms:
         k_s, m, gam = float(ms["k_s"]), float(ms["m"]), float(ms["gamma"])
-        z, k, w = gam / (2.0 * math.sqrt(k_s * m)), k_s, math.sqrt(k_s / m)
-    else:
-        z = k = w = nan
-    rows.append(
-        {
-            "system": "mass-spring",
-            "zeta_formula": "gamma / (2 sqrt(k_s m))",
-            "k_formula": "k_s",
-            "f_n_formula": "sqrt(k_s / m)",
-            "zeta": z,
-            "k": k,
-            "f_n_table": w,
-        }
-    )
+        ms_values = (gam / (2.0 * math.sqrt(k_s * m)), k_s, math.sqrt(k_s / m))
+    rows.append(row("mass-spring", ("gamma / (2 sqrt(k_s m))", "k_s", "sqrt(k_s / m)"),
+                    ms_values))  # fmt: skip
 
     pd = pendulum or {}
+    pd_values = None
     if pd:
         m, g, L, gam = float(pd["m"]), float(pd["g"]), float(pd["L"]), float(pd["gamma"])
-        z, k, w = gam / (2.0 * m * L * math.sqrt(g * L)), m * g * L, math.sqrt(g / L)
-    else:
-        z = k = w = nan
-    rows.append(
-        {
-            "system": "pendulum",
-            "zeta_formula": "gamma / (2 m L sqrt(g L))",
-            "k_formula": "m g L",
-            "f_n_formula": "sqrt(g / L)",
-            "zeta": z,
-            "k": k,
-            "f_n_table": w,
-        }
-    )
+        pd_values = (gam / (2.0 * m * L * math.sqrt(g * L)), m * g * L, math.sqrt(g / L))
+    rows.append(row("pendulum", ("gamma / (2 m L sqrt(g L))", "m g L", "sqrt(g / L)"),
+                    pd_values))  # fmt: skip
 
     EI, rhoA, L = beam.EI, beam.rhoA, beam.L
-    rows.append(
-        {
-            "system": "cantilever beam",
-            "zeta_formula": "gamma L^2 / (2 beta_1^2 sqrt(E I rho A))",
-            "k_formula": "3 E I / L^3",
-            "f_n_formula": "beta_1^2 sqrt(E I / (rho A L^4))",
-            "zeta": beam.gamma * L * L / (2.0 * BETA1**2 * math.sqrt(EI * rhoA)),
-            "k": 3.0 * EI / L**3,
-            "f_n_table": BETA1**2 * math.sqrt(EI / (rhoA * L**4)),
-        }
+    beam_values = (
+        beam.gamma * L * L / (2.0 * BETA1**2 * math.sqrt(EI * rhoA)),
+        3.0 * EI / L**3,
+        BETA1**2 * math.sqrt(EI / (rhoA * L**4)),
     )
+    formulas = ("gamma L^2 / (2 beta_1^2 sqrt(E I rho A))", "3 E I / L^3",
+                "beta_1^2 sqrt(E I / (rho A L^4))")  # fmt: skip
+    rows.append(row("cantilever beam", formulas, beam_values))
     for r in rows:
         r["f_n_unit"] = "rad/s (angular: the table omits 1/(2 pi))"
         r["f_n_hz"] = r["f_n_table"] / (2.0 * math.pi)
