@@ -96,15 +96,74 @@ def solve_static(
     return StaticResult(theta, False, maxiter, res.residual, "no convergence after load ramp")
 
 
+def batched_static(
+    model: DiscreteElastica,
+    lam: np.ndarray,
+    lam_dot: np.ndarray,
+    rtol: float = 1e-11,
+    maxiter: int = 12,
+) -> np.ndarray | None:
+    """Static equilibria at many (lam, lam_dot) at once: plain Newton from the straight beam,
+    all instants in one batched solve.  The same residual and Jacobian as `solve_static`
+    (vectorised); None unless every instant converges (callers then use the robust path)."""
+    g, ef = model.grid, model.effects
+    m, n = lam.size, model.n
+    lam2 = (lam * lam)[:, None]
+    ld = lam_dot[:, None]
+    theta = np.zeros((m, n))
+    idx = np.arange(n)
+    for _ in range(maxiter):
+        c, s = np.cos(theta), np.sin(theta)
+        x = g.ds / 2 + c @ g.P.T
+        y = s @ g.P.T
+        fx, fy = np.zeros_like(x), np.zeros_like(y)
+        ax, bx, ay, by = (np.zeros((m, n)) for _ in range(4))
+        if ef.centrifugal:
+            fx = fx + lam2 * (model.hub_ratio + x)
+            ax = ax - lam2 * s
+            if ef.softening:
+                fy = fy + lam2 * y
+                by = by + lam2 * c
+        if ef.euler:
+            fx = fx + ld * y
+            fy = fy - ld * (model.hub_ratio + x)
+            bx = bx + ld * c
+            ay = ay + ld * s
+        nx, ny = fx @ g.Q.T, fy @ g.Q.T
+        r = theta @ g.K.T + s * nx - c * ny
+        J = s[:, :, None] * g.W[None] * (ax + bx)[:, None, :]
+        J -= c[:, :, None] * g.W[None] * (ay + by)[:, None, :]
+        J += g.K[None]
+        J[:, idx, idx] += c * nx + s * ny
+        try:
+            step = np.linalg.solve(J, -r[:, :, None])[:, :, 0]
+        except np.linalg.LinAlgError:
+            return None
+        theta = theta + step
+        if not np.all(np.isfinite(theta)):
+            return None
+        scale = np.maximum(np.max(np.abs(theta), axis=1), 1e-300)
+        if np.all(np.max(np.abs(step), axis=1) <= rtol * scale):
+            return theta
+    return None
+
+
 def quasistatic_series(
     model: DiscreteElastica, dl: Dimensionless, taus: np.ndarray, rtol: float = 1e-11
 ) -> np.ndarray:
     """Theta(tau) of the quasi-static response at the given instants, shape (N-1, len(taus)).
 
-    Continuation in time: each instant starts Newton from the previous solution; a failed
-    instant is approached by bisecting the time step.  Raises QuasiStaticError on failure.
+    First all instants at once (`batched_static`); if any instant does not converge, the
+    robust path: continuation in time, each instant starting Newton from the previous solution,
+    a failed instant approached by bisecting the time step.  Raises QuasiStaticError on failure.
     """
     taus = np.asarray(taus, dtype=float)
+    lam = np.array([dl.lam(t) for t in taus])
+    lam_dot = np.array([dl.lam_dot(t) for t in taus])
+    if taus.size:
+        fast = batched_static(model, lam, lam_dot, rtol)
+        if fast is not None:
+            return fast.T.copy()
     out = np.empty((model.n, taus.size))
     theta = None
     tau_prev = None

@@ -68,3 +68,22 @@ def test_zero_load_gives_zero_deflection():
     res = solve_static(m, 5.0, 0.0)
     assert res.converged
     np.testing.assert_array_equal(res.theta, 0.0)
+
+
+@pytest.mark.parametrize("omega0,f_d,a", [(5.0, 2.0, 1.0), (200.0, 20.0, 1.0), (5.0, 2.0, 50.0)])
+def test_batched_static_equals_continuation(monkeypatch, omega0, f_d, a):
+    """All instants in one batched Newton give the same quasi-static series as the robust path
+    (sequential continuation in time), down to Newton's tolerance."""
+    from rotbeam import quasistatic
+    from rotbeam.scene import build_scene
+
+    dl = build_scene({"drive": {"omega0": omega0, "f_d": f_d, "amplitude": a}}).dimensionless
+    model = DiscreteElastica(30, dl.hub_ratio, dl.eta, dl.effects)
+    taus = np.arange(32) / 32 * dl.period
+    lam = np.array([dl.lam(t) for t in taus])
+    lam_dot = np.array([dl.lam_dot(t) for t in taus])
+    fast = quasistatic.batched_static(model, lam, lam_dot)
+    assert fast is not None
+    monkeypatch.setattr(quasistatic, "batched_static", lambda *args, **kw: None)
+    slow = quasistatic.quasistatic_series(model, dl, taus)
+    np.testing.assert_allclose(fast.T, slow, rtol=0, atol=1e-12 * np.max(np.abs(slow)))
