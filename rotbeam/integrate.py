@@ -9,7 +9,9 @@ damping matrix is eta M, mass-proportional).  Let Z_k be the state after k drive
 d_k = |Z_k - Z_{k-1}| (max-norm, velocities divided by max(omega, 1)).  For a decaying transient
 the distance still to go obeys |Z_k - Z_inf| <= d_k rho / (1 - rho) with rho = exp(-eta P / 2).
 We stop when that bound is below `ss_tol` times the size of the response (max |Theta| over the
-last period), then integrate `rms_periods` more periods and sample them uniformly for the RMS.
+last period).  The RMS samples are the last `rms_periods` periods integrated if even their first
+instant is within ss_tol of the steady state (always so from the periodic start), else
+`rms_periods` more periods are integrated and sampled uniformly.
 Without damping no steady state is reached: we say so and return the last periods seen.
 """
 
@@ -29,7 +31,8 @@ from .params import Dimensionless, RotbeamInputError
 from .periodic import PeriodicResult, solve_periodic_adaptive, trig_interpolate
 from .quasistatic import quasistatic_series
 
-METHODS = ("Radau", "BDF", "LSODA")
+METHODS = ("Radau", "BDF", "LSODA", "TRBDF2")
+JACOBIANS = ("exact", "fd")
 
 
 class _OutOfTime(Exception):
@@ -47,7 +50,7 @@ class Numerics:
     method: str = "Radau"  #: scipy solve_ivp method
     rtol: float = 1e-5  #: relative tolerance of the time stepper
     ss_tol: float = 1e-3  #: steady-state tolerance (relative remaining transient)
-    rms_periods: int = 2  #: whole drive periods in the RMS window
+    rms_periods: int = 1  #: whole drive periods in the RMS window (one is exact when periodic)
     samples_per_period: int = 64
     max_periods: int = 2000  #: give up after this many periods
     max_tau: float = 2000.0  #: ... or after this much dimensionless time
@@ -55,12 +58,18 @@ class Numerics:
     start: str = "periodic"  #: initial state: "periodic", "linear", "quasistatic" or "rest"
     tail_tol: float = 1e-3  #: harmonic tail of the periodic (collocation) start
     integrate: bool = True  #: verify the collocation orbit by time stepping (False: trust it)
+    jacobian: str = "exact"  #: "exact" (analytic) or "fd" (the stepper's finite differences)
+    extrapolate: bool = False  #: Richardson-extrapolate RMS from N and N // 2 (rotbeam.scene)
 
     def __post_init__(self) -> None:
         _check_N(self.N)
         if self.method not in METHODS:
             raise RotbeamInputError(
                 f"numerics.method must be one of {METHODS}, got {self.method!r}"
+            )
+        if self.jacobian not in JACOBIANS:
+            raise RotbeamInputError(
+                f"numerics.jacobian must be one of {JACOBIANS}, got {self.jacobian!r}"
             )
         if self.start not in STARTS:
             raise RotbeamInputError(f"numerics.start must be one of {STARTS}, got {self.start!r}")
@@ -72,6 +81,14 @@ class Numerics:
             v = getattr(self, name)
             if isinstance(v, bool) or not isinstance(v, int) or v < lo:
                 raise RotbeamInputError(f"numerics.{name} must be an integer >= {lo}, got {v!r}")
+        if not isinstance(self.extrapolate, bool):
+            raise RotbeamInputError(
+                f"numerics.extrapolate must be true or false, got {self.extrapolate!r}"
+            )
+        if self.extrapolate and self.N < 6:
+            raise RotbeamInputError(
+                f"numerics.N must be >= 6 with extrapolate (coarse grid N // 2), got {self.N}"
+            )
         if not isinstance(self.integrate, bool):
             raise RotbeamInputError(
                 f"numerics.integrate must be true or false, got {self.integrate!r}"
@@ -205,13 +222,17 @@ def steady_state(
     def jac(tau, z):
         return model.first_order_jacobian(z[:n], z[n:], dl.lam(tau), dl.lam_dot(tau))
 
+    method = num.method
+    if method == "TRBDF2":
+        from .trbdf2 import TRBDF2 as method
+
     def run(tau_a, tau_b, z_a, t_eval):
         """solve_ivp over [tau_a, tau_b]; None when the wall-time budget ran out."""
         nonlocal nfev, njev
         try:
             sol = solve_ivp(
-                rhs, (tau_a, tau_b), z_a, method=num.method, rtol=rtol, atol=atol,
-                jac=jac, t_eval=t_eval,
+                rhs, (tau_a, tau_b), z_a, method=method, rtol=rtol, atol=atol,
+                jac=jac if num.jacobian == "exact" else None, t_eval=t_eval,
             )  # fmt: skip
         except _OutOfTime:
             return None
@@ -225,7 +246,12 @@ def steady_state(
             f"({k} whole periods, tau={k * P:.4g}); remaining transient bound {bound:.3g}"
         )
 
+    # from a converged collocated orbit one period measures its distance to the time-stepped
+    # orbit; from any other start the first period's difference may be a lucky crossing
+    min_periods = 1 if periodic is not None and periodic.converged else 2
     history: list[float] = []
+    window: list[tuple[np.ndarray, np.ndarray]] = []  #: the last rms_periods periods seen
+    reuse = False
     k = 0
     converged = False
     status, message = 1, ""
@@ -259,8 +285,16 @@ def steady_state(
         history.append(bound)
         if progress is not None:
             progress(k, bound)
-        if k >= 2 and bound <= num.ss_tol:
+        window.append((sol.t[:-1], sol.y[:n, :-1]))
+        del window[: -num.rms_periods]
+        if k >= min_periods and bound <= num.ss_tol:
             converged, status, message = True, 0, f"steady after {k} periods"
+            # the periods just integrated serve as the RMS window when even their first sample
+            # is within ss_tol of the steady state:
+            # |Z_{k-p} - Z_inf| <= d (sum_{q<p} rho^-q + rho / (1 - rho))
+            p = num.rms_periods
+            reach = sum(rho**-q for q in range(p)) + rho / (1.0 - rho)
+            reuse = k >= p and len(window) == p and d * reach / size <= num.ss_tol
             break
     else:
         message = (
@@ -270,7 +304,11 @@ def steady_state(
         )
 
     taus, theta = seen_tau, seen_theta
-    if status == 0:
+    if status == 0 and reuse:
+        taus = np.concatenate([w[0] for w in window])
+        theta = np.concatenate([w[1] for w in window], axis=1)
+        message += f" (RMS window: the last {num.rms_periods} of them)"
+    elif status == 0:
         window = period_samples(dl, k, num.rms_periods, m)
         sol = run(k * P, (k + num.rms_periods) * P, z, window)
         if sol is None:

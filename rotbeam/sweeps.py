@@ -20,7 +20,7 @@ from .scene import Scene, simulate
 COLUMNS = [
     "omega0", "f_d", "amplitude", "fd_over_fn", "C_max", "E_max", "E_n", "f_n_hz", "f0_hz",
     "rms_dynamic", "rms_quasistatic", "delta_rms", "converged", "status", "message",
-    "periods", "N", "seconds",
+    "periods", "N", "extrapolated", "seconds",
 ]  # fmt: skip
 
 
@@ -69,12 +69,14 @@ def scan_line(
             keys = ("rms_dynamic", "rms_quasistatic", "delta_rms", "converged", "status",
                     "message", "periods")  # fmt: skip
             row.update({key: s[key] for key in keys})
+            row["extrapolated"] = bool(s.get("extrapolated", False))
             if res.dynamic.periodic is not None and res.dynamic.periodic.converged:
                 guess = res.dynamic.periodic.theta.T
         except (QuasiStaticError, np.linalg.LinAlgError, FloatingPointError, ValueError) as exc:
             row.update({"rms_dynamic": math.nan, "rms_quasistatic": math.nan,
                         "delta_rms": math.nan, "converged": False, "status": -2,
-                        "message": f"{type(exc).__name__}: {exc}", "periods": 0})  # fmt: skip
+                        "message": f"{type(exc).__name__}: {exc}", "periods": 0,
+                        "extrapolated": False})  # fmt: skip
             guess = None
         row["seconds"] = time.perf_counter() - t0
         rows.append(row)
