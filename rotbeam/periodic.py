@@ -143,12 +143,12 @@ class Collocation:
         Lb, Cb, Mb = (b.mean(axis=0) for b in blocks)
         M = self.M
         w = 2.0 * math.pi * np.arange(M // 2 + 1) / self.dl.period
-        lus = [sla.lu_factor(Lb + 1j * wk * Cb - wk * wk * Mb, check_finite=False) for wk in w]
+        blocks_k = Lb[None] + 1j * w[:, None, None] * Cb[None] - (w * w)[:, None, None] * Mb[None]
+        inv = np.linalg.inv(blocks_k)  # one batched call; a preconditioner needs no pivoted LU
 
         def solve(R: np.ndarray) -> np.ndarray:
             F = np.fft.rfft(R, axis=0)
-            Y = np.stack([sla.lu_solve(lu, F[k], check_finite=False) for k, lu in enumerate(lus)])
-            return np.fft.irfft(Y, n=M, axis=0)
+            return np.fft.irfft(np.einsum("kij,kj->ki", inv, F), n=M, axis=0)
 
         return solve
 
