@@ -21,6 +21,7 @@ include: "workflow/rules/figures.smk"
 include: "workflow/rules/boundary.smk"
 include: "workflow/rules/tables.smk"
 include: "workflow/rules/surrogate.smk"
+include: "workflow/rules/performance.smk"
 
 
 rule all:

@@ -19,17 +19,41 @@ from .params import Beam
 def boundary_table(
     lines: Iterable[pd.DataFrame], thresholds: Iterable[float], beam: dict, beam_id: str = "ref"
 ) -> pd.DataFrame:
-    """One row per (line, threshold): f_d* by the grid rule and by the root, and E*."""
+    """One row per (line, threshold): f_d* by the grid rule and by the root, and E*.
+
+    Every line gives its rows, an empty one included (NaN, found False), so that a fit over the
+    table counts it as dropped.  `points_failed` counts points without a finite Delta RMS
+    (solver failures) or from runs that report no converged steady state; `points_unconverged`
+    counts the latter.  Unconverged points are left out of f_d*: their RMS is what the solver saw
+    when its budget ran out, not the steady state.
+    """
     b = Beam(**beam)
     rows = []
     for df in lines:
         if df.empty:
+            for th in thresholds:
+                rows.append({
+                    "beam": beam_id, "E": b.E, "L": b.L, "h_over_L": float(f"{b.h / b.L:.6g}"),
+                    "zeta": b.zeta, "omega0": math.nan, "C_max": math.nan,
+                    "threshold": check_threshold(float(th)), "f_n_hz": b.f_n, "f0_hz": math.nan,
+                    "f_d_grid": math.nan, "f_d_root": math.nan, "E_star_grid": math.nan,
+                    "E_star_root": math.nan, "E_n": math.nan, "G": b.G,
+                    "hub_ratio": b.hub_ratio, "found": False, "points_used": 0,
+                    "points_failed": 0, "points_unconverged": 0,
+                    "message": "empty line: no scanned points",
+                })  # fmt: skip
             continue
         first = df.iloc[0]
+        unconverged = 0
+        delta = df["delta_rms"].to_numpy(float).copy()
+        if "converged" in df:
+            conv = df["converged"].astype(str).str.lower().isin(["true", "1", "1.0"]).to_numpy()
+            unconverged = int((~conv & np.isfinite(delta)).sum())
+            delta[~conv] = np.nan
         a = float(first["amplitude"])
         for th in thresholds:
             th = check_threshold(float(th))
-            cr = critical_from_scan(df["f_d"].to_numpy(), df["delta_rms"].to_numpy(), th)
+            cr = critical_from_scan(df["f_d"].to_numpy(), delta, th)
             e = b.G * a * 2.0 * math.pi
             rows.append({
                 "beam": beam_id, "E": b.E, "L": b.L, "h_over_L": float(f"{b.h / b.L:.6g}"),
@@ -40,7 +64,8 @@ def boundary_table(
                 "E_star_grid": e * cr["f_d_grid"], "E_star_root": e * cr["f_d_root"],
                 "E_n": e * b.f_n, "G": b.G, "hub_ratio": b.hub_ratio,
                 "found": cr["found"], "points_used": cr["points_used"],
-                "points_failed": cr["points_failed"], "message": cr["message"],
+                "points_failed": cr["points_failed"], "points_unconverged": unconverged,
+                "message": cr["message"],
             })  # fmt: skip
     return pd.DataFrame(rows)
 
@@ -50,7 +75,16 @@ def fit_c(table: pd.DataFrame, column: str = "f_d_root") -> dict:
     ok = table["found"].astype(bool) & np.isfinite(table[column]) & np.isfinite(table["f0_hz"])
     f0 = table.loc[ok, "f0_hz"].to_numpy(float)
     fd = table.loc[ok, column].to_numpy(float)
-    out = {"points_used": int(ok.sum()), "points_dropped": int((~ok).sum()), "column": column}
+    dropped = [
+        {
+            "beam": str(r.get("beam", "")),
+            "C_max": float(r["C_max"]),
+            "reason": str(r.get("message", "")) if not r["found"] else f"{column} not finite",
+        }
+        for _, r in table[~ok].iterrows()
+    ]
+    out = {"points_used": int(ok.sum()), "points_dropped": int((~ok).sum()), "column": column,
+           "dropped": dropped}  # fmt: skip
     if f0.size < 2:
         out.update(c=math.nan, c_stderr=math.nan, message="fewer than 2 lines with a crossing")
         return out
@@ -71,6 +105,7 @@ def c_per_threshold(table: pd.DataFrame) -> pd.DataFrame:
             "threshold": th, "c_root": root["c"], "c_root_stderr": root["c_stderr"],
             "c_grid": grid["c"], "c_grid_stderr": grid["c_stderr"],
             "lines_used": root["points_used"], "lines_dropped": root["points_dropped"],
+            "grid_lines_used": grid["points_used"], "grid_lines_dropped": grid["points_dropped"],
             "c0_second_order": c0_limit(th), "c_paper": paper.get(round(th, 4), math.nan),
         })  # fmt: skip
     return pd.DataFrame(rows)

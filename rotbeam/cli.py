@@ -1,4 +1,5 @@
-"""Command line: `rotbeam simulate` (one scene) and `rotbeam modes` (linearised frequencies).
+"""Command line: `rotbeam simulate` (one scene), `rotbeam modes` (linearised frequencies) and
+`rotbeam bench` (work-precision benchmark).
 
 Bad input gives one line on stderr and exit status 2, never a traceback.
 """
@@ -8,19 +9,29 @@ from __future__ import annotations
 import argparse
 import json
 import math
+import re
 import sys
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
-from .params import BETA1, Beam, RotbeamInputError
+from .params import BETA1, C_MAX_LIMIT, Beam, RotbeamInputError
 
 EXIT_USAGE = 2
 
 
 class _Parser(argparse.ArgumentParser):
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        super().__init__(*args, **kwargs)
+        # values like -2.5e1, -1e-5, -inf are values, not flags (argparse only knows -2, -2.5)
+        self._negative_number_matcher = re.compile(
+            r"^-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$|^-(inf|infinity|nan)$", re.IGNORECASE
+        )
+
     def error(self, message: str) -> None:  # one line, exit 2
+        if message.startswith("unrecognized arguments"):
+            message += f"; allowed: see `{self.prog} --help`"
         self.exit(EXIT_USAGE, f"rotbeam: error: {message}\n")
 
 
@@ -59,6 +70,13 @@ def build_parser() -> argparse.ArgumentParser:
     s.add_argument("--out", help="write the time series to this CSV or Parquet file")
     s.add_argument("--progress", action="store_true", help="report progress on stderr")
 
+    b = sub.add_parser("bench", help="work-precision benchmark (error against wall time)")
+    b.add_argument("--quick", action="store_true", help="the small plan (2 scenes, 2 tolerances)")
+    b.add_argument("--config", help="YAML mapping of BenchPlan fields (see rotbeam/bench.py)")
+    b.add_argument("--out", default="results/performance/work_precision",
+                   help="output stem: writes STEM.csv, .md, .pdf, .png")  # fmt: skip
+    b.add_argument("--max-seconds", type=_finite, help="budget per run [s]")
+
     m = sub.add_parser("modes", help="natural frequencies under steady rotation")
     m.add_argument("--omega", type=_finite, default=0.0, help="angular velocity [rad/s]")
     m.add_argument("--k", type=_int, default=3, help="number of modes")
@@ -76,26 +94,42 @@ def build_parser() -> argparse.ArgumentParser:
 
 def _scene_from_args(args: argparse.Namespace):
     from .params import Effects
-    from .scene import build_scene, load_scene_file
+    from .scene import build_scene, load_scene_file, scene_sections
 
-    spec: dict[str, Any] = load_scene_file(args.scene) if args.scene else {}
-    spec = {k: dict(v or {}) for k, v in spec.items()} if spec else {}
-    for section, key, value in (
-        ("drive", "omega0", args.omega0),
-        ("drive", "f_d", args.fd),
-        ("drive", "amplitude", args.amplitude),
-        ("numerics", "N", args.N),
-        ("numerics", "method", args.method),
-        ("numerics", "rtol", args.rtol),
-        ("beam", "R", args.R),
+    spec = scene_sections(load_scene_file(args.scene) if args.scene else {})
+    flags = {}  # scene key -> the flag that set it, named in an error about that key
+    for section, key, value, flag in (
+        ("drive", "omega0", args.omega0, "--omega0"),
+        ("drive", "f_d", args.fd, "--fd"),
+        ("drive", "amplitude", args.amplitude, "--amplitude"),
+        ("numerics", "N", args.N, "--N"),
+        ("numerics", "method", args.method, "--method"),
+        ("numerics", "rtol", args.rtol, "--rtol"),
+        ("beam", "R", args.R, "--R"),
     ):
         if value is not None:
             spec.setdefault(section, {})[key] = value
-    if args.effects is not None:
-        spec["effects"] = vars(Effects.from_list(args.effects)).copy()
-    if args.scene is None and (args.omega0 is None or args.fd is None):
-        raise RotbeamInputError("simulate needs --omega0 and --fd (or a --scene file)")
-    return build_scene(spec)
+            flags[f"{section}.{key}"] = flag
+    try:
+        if args.effects is not None:
+            flags["effects"] = "--effects"
+            spec["effects"] = vars(Effects.from_list(args.effects)).copy()
+        for key, flag, what in (
+            ("omega0", "--omega0", "a finite number, rad/s"),
+            ("f_d", "--fd", "a number > 0, Hz"),
+        ):
+            if key not in spec.get("drive", {}):
+                raise RotbeamInputError(
+                    f"drive.{key} is missing: give {flag} ({what}) or drive.{key} in the "
+                    f"--scene file"
+                )
+        return build_scene(spec)
+    except RotbeamInputError as exc:
+        msg = str(exc)
+        for key, flag in flags.items():
+            if msg.startswith(key) and not msg[len(key) : len(key) + 1].isalnum():
+                raise RotbeamInputError(f"argument {flag}: {msg}") from None
+        raise
 
 
 def _write_series(path: str, series: dict[str, np.ndarray]) -> None:
@@ -143,22 +177,37 @@ def cmd_simulate(args: argparse.Namespace) -> int:
     return 0 if res.converged else 1
 
 
+def _check_rotation(flag: str, value: float, c: float, formula: str) -> None:
+    """The centrifugal number C = G Omega^2 = lambda^2 (R_o/L + 1) within the model's range."""
+    if not c <= C_MAX_LIMIT:
+        raise RotbeamInputError(
+            f"argument {flag}: {value!r} gives C = {formula} = {c:.3g}; allowed: C <= "
+            f"{C_MAX_LIMIT:g}"
+        )
+
+
 def cmd_modes(args: argparse.Namespace) -> int:
     from .modes import dimensionless_frequencies, natural_frequencies_hz
 
-    if args.N < 3:
-        raise RotbeamInputError(f"--N must be >= 3, got {args.N}")
+    if not 3 <= args.N <= 2000:
+        raise RotbeamInputError(f"--N must be in [3, 2000], got {args.N}")
     if not 1 <= args.k < args.N:
         raise RotbeamInputError(f"--k must be in [1, N-1={args.N - 1}], got {args.k}")
     soft = not args.no_softening
     if args.dimensionless:
         if args.hub_ratio < 0:
             raise RotbeamInputError(f"--hub-ratio must be >= 0, got {args.hub_ratio}")
+        c = args.lam * args.lam * (args.hub_ratio + 1.0)
+        _check_rotation("--lambda", args.lam, c, "lambda^2 (hub ratio + 1)")
         w = dimensionless_frequencies(args.lam, args.hub_ratio, args.k, args.N, soft)
         out = {"frequencies_dimensionless": w.tolist(), "lambda": args.lam,
                "hub_ratio": args.hub_ratio, "beta1_squared": BETA1**2}  # fmt: skip
     else:
-        beam = Beam(R=args.R) if args.R is not None else Beam()
+        try:
+            beam = Beam(R=args.R) if args.R is not None else Beam()
+        except RotbeamInputError as exc:
+            raise RotbeamInputError(f"argument --R: {exc}") from None
+        _check_rotation("--omega", args.omega, beam.G * args.omega * args.omega, "G Omega^2")
         f = natural_frequencies_hz(beam, args.omega, args.k, args.N, soft)
         out = {"frequencies_hz": f.tolist(), "omega": args.omega, "f_n_hz": beam.f_n}
     if args.json:
@@ -169,12 +218,43 @@ def cmd_modes(args: argparse.Namespace) -> int:
     return 0
 
 
+def cmd_bench(args: argparse.Namespace) -> int:
+    from .bench import plan_from_dict, run_benchmark, write_outputs
+    from .scene import load_yaml
+
+    spec: dict[str, Any] = {}
+    if args.config:
+        try:
+            spec = load_yaml(Path(args.config).read_text()) or {}
+        except OSError as exc:
+            raise RotbeamInputError(f"--config {args.config!r}: {exc.strerror}") from None
+        if not isinstance(spec, dict):
+            raise RotbeamInputError(f"--config {args.config!r} must hold a mapping")
+    if args.quick:
+        spec["quick"] = True
+    if args.max_seconds is not None:
+        if args.max_seconds <= 0:
+            raise RotbeamInputError(f"--max-seconds must be > 0, got {args.max_seconds}")
+        spec["max_seconds"] = args.max_seconds
+    plan = plan_from_dict(spec)
+
+    def say(msg: str) -> None:
+        print(msg, file=sys.stderr, flush=True)
+
+    runs, refs = run_benchmark(plan, progress=say)
+    write_outputs(runs, refs, plan, args.out)
+    say(f"wrote {args.out}.csv, .md, .pdf, .png")
+    return 0
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = build_parser()
     args = parser.parse_args(argv)
     try:
         if args.command == "simulate":
             return cmd_simulate(args)
+        if args.command == "bench":
+            return cmd_bench(args)
         return cmd_modes(args)
     except RotbeamInputError as exc:
         print(f"rotbeam: error: {exc}", file=sys.stderr)

@@ -67,6 +67,10 @@ class Numerics:
             raise RotbeamInputError(
                 f"numerics.method must be one of {METHODS}, got {self.method!r}"
             )
+        for name in ("rtol", "ss_tol", "tail_tol", "max_seconds", "max_tau"):
+            v = getattr(self, name)
+            if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
+                raise RotbeamInputError(f"numerics.{name} must be a finite number, got {v!r}")
         if self.jacobian not in JACOBIANS:
             raise RotbeamInputError(
                 f"numerics.jacobian must be one of {JACOBIANS}, got {self.jacobian!r}"

@@ -14,20 +14,24 @@ def _tmp(path: Path) -> Path:
     return path.with_name(f".{path.name}.{os.getpid()}.part")
 
 
-def write_csv(df: pd.DataFrame, path: str | Path) -> None:
+def _atomic(path: str | Path, write) -> None:
+    """write(tmp) then rename onto `path`; the temporary file is removed if writing fails."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     tmp = _tmp(path)
-    df.to_csv(tmp, index=False)
-    tmp.replace(path)
+    try:
+        write(tmp)
+        tmp.replace(path)
+    finally:
+        tmp.unlink(missing_ok=True)
+
+
+def write_csv(df: pd.DataFrame, path: str | Path) -> None:
+    _atomic(path, lambda tmp: df.to_csv(tmp, index=False))
 
 
 def write_text(text: str, path: str | Path) -> None:
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    tmp = _tmp(path)
-    tmp.write_text(text)
-    tmp.replace(path)
+    _atomic(path, lambda tmp: tmp.write_text(text))
 
 
 def write_json(data: Any, path: str | Path) -> None:

@@ -212,9 +212,15 @@ class Effects:
     @classmethod
     def from_list(cls, names: str | list[str]) -> Effects:
         """Effects switched on by name, e.g. "centrifugal,euler,damping" ("all", "none" allowed)."""
+        given = names
         if isinstance(names, str):
             names = [n.strip() for n in names.split(",") if n.strip()]
         allowed = [f.name for f in fields(cls)]
+        if not names:
+            raise RotbeamInputError(
+                f"effects {given!r} names no effect; allowed: {', '.join(allowed)} "
+                f"(or 'all', 'none')"
+            )
         if names == ["all"]:
             return cls(**{n: True for n in allowed})
         if names == ["none"]:
@@ -222,7 +228,8 @@ class Effects:
         bad = [n for n in names if n not in allowed]
         if bad:
             raise RotbeamInputError(
-                f"unknown effect(s) {bad}; allowed: {', '.join(allowed)} (or 'all', 'none')"
+                f"effects {given!r}: unknown effect(s) {', '.join(map(str, bad))}; allowed: "
+                f"{', '.join(allowed)} (or 'all', 'none')"
             )
         return cls(**{n: (n in names) for n in allowed})
 
@@ -287,6 +294,40 @@ def drive_groups(beam: Beam, drive: Drive) -> dict[str, float]:
         "I_max": (abs(drive.omega0) + drive.amplitude) * beam.T,
         "fd_over_fn": drive.f_d / beam.f_n,
     }
+
+
+#: The model's range: C_max = G (|Omega_0| + a)^2 and E_max = G a 2 pi f_d up to 1e12, f_d up
+#: to 1e6 f_n.  Far beyond the paper's scenes (C_max <= 787); beyond it the discrete model's
+#: loads swamp its bending terms and, further out, overflow (the solvers then fail or stall).
+C_MAX_LIMIT = 1e12
+E_MAX_LIMIT = 1e12
+FD_OVER_FN_LIMIT = 1e6
+
+
+def check_model_range(beam: Beam, drive: Drive) -> None:
+    """One-line error naming the drive (and G, f_n) when the scene is outside the model's range."""
+    G = beam.G
+    w = abs(drive.omega0) + drive.amplitude
+    c_max = G * w * w  # x * x: inf rather than OverflowError
+    e_max = G * drive.amplitude * 2.0 * math.pi * drive.f_d
+    ratio = drive.f_d / beam.f_n
+    if not c_max <= C_MAX_LIMIT:
+        raise RotbeamInputError(
+            f"C_max = G (|Omega_0| + a)^2 = {c_max:.3g} from drive.omega0 = {drive.omega0!r}, "
+            f"drive.amplitude = {drive.amplitude!r}, G = {G:.3g} s^2 (beam); "
+            f"allowed: C_max <= {C_MAX_LIMIT:g}"
+        )
+    if not e_max <= E_MAX_LIMIT:
+        raise RotbeamInputError(
+            f"E_max = G a 2 pi f_d = {e_max:.3g} from drive.amplitude = {drive.amplitude!r}, "
+            f"drive.f_d = {drive.f_d!r}, G = {G:.3g} s^2 (beam); "
+            f"allowed: E_max <= {E_MAX_LIMIT:g}"
+        )
+    if not ratio <= FD_OVER_FN_LIMIT:
+        raise RotbeamInputError(
+            f"f_d / f_n = {ratio:.3g} from drive.f_d = {drive.f_d!r} Hz, f_n = {beam.f_n:.4g} Hz "
+            f"(beam); allowed: f_d <= {FD_OVER_FN_LIMIT:g} f_n"
+        )
 
 
 def omega0_for_cmax(beam: Beam, c_max: float, amplitude: float = 1.0) -> float:

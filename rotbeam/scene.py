@@ -1,7 +1,9 @@
 """One scene: a beam, a drive, the effects and the numerics; dynamic and quasi-static responses.
 
-A scene file is YAML with optional sections `beam`, `drive`, `effects`, `numerics` whose keys are
-the fields of `Beam`, `Drive`, `Effects` and `Numerics`; unknown keys are errors.
+A scene file is YAML with sections `beam`, `drive`, `effects`, `numerics` (mappings) whose keys
+are the fields of `Beam`, `Drive`, `Effects` and `Numerics`; unknown sections or keys, NaN, inf
+and booleans for numbers are errors.  Omitted keys take the paper's values, but for the drive's
+omega0 and f_d, which `rotbeam simulate` needs from the file or its flags.
 """
 
 from __future__ import annotations
@@ -10,7 +12,7 @@ import math
 import re
 import time
 from collections.abc import Callable
-from dataclasses import dataclass, fields
+from dataclasses import dataclass, fields, replace
 from pathlib import Path
 from typing import Any
 
@@ -20,7 +22,15 @@ import yaml
 from .criterion import delta_rms, rms
 from .elastica import DiscreteElastica
 from .integrate import Numerics, SteadyState, steady_state
-from .params import Beam, Dimensionless, Drive, Effects, RotbeamInputError, drive_groups
+from .params import (
+    Beam,
+    Dimensionless,
+    Drive,
+    Effects,
+    RotbeamInputError,
+    check_model_range,
+    drive_groups,
+)
 from .quasistatic import quasistatic_series
 
 
@@ -62,32 +72,67 @@ class Scene:
         return Dimensionless.from_physical(self.beam, self.drive, self.effects)
 
 
+def scene_sections(spec: Any) -> dict[str, dict[str, Any]]:
+    """The sections of a scene spec as fresh dicts; unknown sections or keys and sections that
+    are not mappings are errors naming the key, its value and what is allowed."""
+    if spec is None:
+        return {}
+    if not isinstance(spec, dict):
+        raise RotbeamInputError(
+            f"a scene must be a mapping of sections ({', '.join(SECTIONS)}), "
+            f"got {_show(spec)} ({type(spec).__name__})"
+        )
+    out = {}
+    for name, values in spec.items():
+        if name not in SECTIONS:
+            raise RotbeamInputError(
+                f"{name} = {_show(values)}: unknown scene section; allowed: {', '.join(SECTIONS)}"
+            )
+        values = {} if values is None else values
+        if not isinstance(values, dict):
+            raise RotbeamInputError(
+                f"{name} = {_show(values)}: a scene section must be a mapping of keys, "
+                f"e.g. {name}: {{{next(iter(_fields(name)))}: ...}}; got {type(values).__name__}"
+            )
+        for key, value in values.items():
+            if key not in _fields(name):
+                raise RotbeamInputError(
+                    f"{name}.{key} = {_show(value)}: unknown key; allowed in {name}: "
+                    f"{', '.join(_fields(name))}"
+                )
+        out[name] = dict(values)
+    return out
+
+
+def _fields(section: str) -> list[str]:
+    return [f.name for f in fields(SECTIONS[section])]
+
+
+def _show(value: Any, width: int = 60) -> str:
+    text = repr(value)
+    return text if len(text) <= width else text[: width - 3] + "..."
+
+
 def build_scene(spec: dict[str, Any] | None = None) -> Scene:
     """Scene from a nested dict like the YAML file; names the offending key on error."""
-    spec = spec or {}
-    if not isinstance(spec, dict):
-        raise RotbeamInputError(f"a scene must be a mapping of sections, got {type(spec).__name__}")
-    unknown = set(spec) - set(SECTIONS)
-    if unknown:
-        raise RotbeamInputError(
-            f"unknown scene section(s) {sorted(unknown)}; allowed: {', '.join(SECTIONS)}"
-        )
+    sections = scene_sections(spec)
+    for name, values in sections.items():
+        defaults = {f.name: f.default for f in fields(SECTIONS[name])}
+        for key, value in values.items():
+            if isinstance(value, float) and not math.isfinite(value):
+                raise RotbeamInputError(f"{name}.{key} must be finite, got {value!r}")
+            if isinstance(value, bool) and not isinstance(defaults[key], bool):
+                kind = "an integer" if isinstance(defaults[key], int) else "a number"
+                raise RotbeamInputError(f"{name}.{key} must be {kind}, got {value!r} (bool)")
     parts = {}
     for name, cls in SECTIONS.items():
-        values = spec.get(name) or {}
-        if not isinstance(values, dict):
-            raise RotbeamInputError(f"scene section {name!r} must be a mapping, got {values!r}")
-        allowed = {f.name for f in fields(cls)}
-        bad = set(values) - allowed
-        if bad:
-            raise RotbeamInputError(
-                f"unknown key(s) {sorted(bad)} in {name!r}; allowed: {', '.join(sorted(allowed))}"
-            )
         try:
-            parts[name] = cls(**values)
+            parts[name] = cls(**sections.get(name, {}))
         except TypeError as exc:  # pragma: no cover - guarded by the key check above
             raise RotbeamInputError(f"{name}: {exc}") from None
-    return Scene(**parts)
+    scene = Scene(**parts)
+    check_model_range(scene.beam, scene.drive)
+    return scene
 
 
 def load_scene_file(path: str | Path) -> dict[str, Any]:
@@ -97,11 +142,21 @@ def load_scene_file(path: str | Path) -> dict[str, Any]:
     try:
         data = load_yaml(path.read_text())
     except yaml.YAMLError as exc:
-        raise RotbeamInputError(f"scene file {str(path)!r} is not valid YAML: {exc}") from None
+        mark = getattr(exc, "problem_mark", None)
+        where = f" (line {mark.line + 1}, column {mark.column + 1})" if mark else ""
+        what = getattr(exc, "problem", None) or str(exc)
+        raise RotbeamInputError(
+            " ".join(f"scene file {str(path)!r} is not valid YAML: {what}{where}".split())
+        ) from None
+    except (OSError, UnicodeDecodeError) as exc:
+        raise RotbeamInputError(f"scene file {str(path)!r} cannot be read: {exc}") from None
     if data is None:
         return {}
     if not isinstance(data, dict):
-        raise RotbeamInputError(f"scene file {str(path)!r} must hold a mapping of sections")
+        raise RotbeamInputError(
+            f"scene file {str(path)!r} must hold a mapping of sections ({', '.join(SECTIONS)}), "
+            f"got {_show(data)} ({type(data).__name__})"
+        )
     return data
 
 
@@ -119,6 +174,7 @@ class SceneResult:
     rms_quasistatic: float
     delta_rms: float
     seconds: float
+    extrapolation: dict[str, Any] | None = None  #: Richardson from N and N // 2, if asked
 
     @property
     def converged(self) -> bool:
@@ -147,6 +203,8 @@ class SceneResult:
         }
         out.update(drive_groups(beam, drive))
         out.update({k: v for k, v in beam.derived().items() if k in ("G", "delta", "eta", "zeta")})
+        if self.extrapolation is not None:
+            out.update(self.extrapolation)
         return out
 
     def time_series(self) -> dict[str, np.ndarray]:
@@ -167,6 +225,11 @@ def quasistatic_midspan(
     return theta, np.atleast_1d(model.grid.midspan(theta))
 
 
+#: Richardson extrapolation is skipped when the two grids differ by more than this (relative):
+#: then the pair is not in the asymptotic range (e.g. a different branch near resonance).
+EXTRAPOLATION_MAX_CHANGE = 0.1
+
+
 def simulate(
     scene: Scene,
     progress: Callable[[int, float], None] | None = None,
@@ -174,8 +237,52 @@ def simulate(
 ) -> SceneResult:
     """Dynamic steady state and quasi-static response sampled at the same instants.
 
-    `guess` seeds the periodic collocation (the previous point's orbit along a sweep).
+    `guess` seeds the periodic collocation (the previous point's orbit along a sweep).  With
+    numerics.extrapolate the RMS values are Richardson-extrapolated from N and N // 2 (the
+    discretisation is second order in 1/N); the time series stay those of grid N.
     """
+    fine = _simulate_grid(scene, progress, guess)
+    num = scene.numerics
+    if not num.extrapolate:
+        return fine
+    Nc = num.N // 2
+    coarse_guess = guess[:, 1::2] if guess is not None and num.N % 2 == 0 else None
+    coarse = _simulate_grid(
+        Scene(scene.beam, scene.drive, scene.effects, replace(num, N=Nc, extrapolate=False)),
+        None,
+        coarse_guess,
+    )
+    q = (num.N / Nc) ** 2
+    info = {"N_coarse": Nc, "rms_dynamic_N": fine.rms_dynamic,
+            "rms_dynamic_coarse": coarse.rms_dynamic, "rms_quasistatic_N": fine.rms_quasistatic,
+            "rms_quasistatic_coarse": coarse.rms_quasistatic,
+            "coarse_seconds": coarse.seconds}  # fmt: skip
+    pairs = [(fine.rms_dynamic, coarse.rms_dynamic), (fine.rms_quasistatic, coarse.rms_quasistatic)]
+    change = max(abs(f - c) / abs(f) if f else abs(c) for f, c in pairs)
+    ok = fine.converged and coarse.converged and math.isfinite(change)
+    if ok and change <= EXTRAPOLATION_MAX_CHANGE:
+        r_dyn, r_qs = ((q * f - c) / (q - 1.0) for f, c in pairs)
+        info["extrapolated"] = True
+    else:
+        r_dyn, r_qs = fine.rms_dynamic, fine.rms_quasistatic
+        info["extrapolated"] = False
+        why = "coarse run failed" if not coarse.converged else f"grids differ by {change:.2g}"
+        info["note"] = f"not extrapolated: {why}"
+    return replace(
+        fine,
+        rms_dynamic=r_dyn,
+        rms_quasistatic=r_qs,
+        delta_rms=delta_rms(r_dyn, r_qs),
+        seconds=fine.seconds + coarse.seconds,
+        extrapolation=info,
+    )
+
+
+def _simulate_grid(
+    scene: Scene,
+    progress: Callable[[int, float], None] | None = None,
+    guess: np.ndarray | None = None,
+) -> SceneResult:
     t0 = time.perf_counter()
     dl = scene.dimensionless
     num = scene.numerics

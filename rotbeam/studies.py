@@ -8,6 +8,8 @@ carry the values that define them, so that an output path names its parameters.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -39,8 +41,135 @@ def fig7_beams(config: dict[str, Any]) -> dict[str, dict[str, float]]:
     return out
 
 
-def check_config(config: dict[str, Any]) -> None:
-    """Physical checks the JSON schema cannot express; messages name the key."""
+def _key(path: Any) -> str:
+    """Dotted key of a config path: ('fig4', 'omega0', 1) -> 'fig4.omega0[1]'."""
+    out = ""
+    for p in path:
+        out += f"[{p}]" if isinstance(p, int) else (f".{p}" if out else str(p))
+    return out or "the config"
+
+
+def _show(value: Any, width: int = 60) -> str:
+    text = repr(value)
+    return text if len(text) <= width else text[: width - 3] + "..."
+
+
+def _resolve(schema: dict, root: dict) -> dict:
+    """Follow local `$ref`s ("#/definitions/...") of the config schema."""
+    while isinstance(schema, dict) and "$ref" in schema:
+        node: Any = root
+        for part in schema["$ref"].lstrip("#/").split("/"):
+            node = node[part]
+        schema = {**node, **{k: v for k, v in schema.items() if k != "$ref"}}
+    return schema
+
+
+def _subschema(root: dict, path: Any) -> dict | None:
+    """The schema of the value at `path` (None where the schema says nothing)."""
+    node = _resolve(root, root)
+    for p in path:
+        if isinstance(p, int):
+            prefix = node.get("prefixItems", [])
+            node = prefix[p] if p < len(prefix) else node.get("items")
+        else:
+            node = node.get("properties", {}).get(p)
+        if not isinstance(node, dict):
+            return None
+        node = _resolve(node, root)
+    return node
+
+
+def describe_allowed(schema: dict | None, root: dict | None = None) -> str:
+    """What a JSON-schema node allows, in words: 'a finite number in (0, 1)'."""
+    if not schema:
+        return "a finite number"
+    s = _resolve(schema, root or {})
+    if "enum" in s:
+        return "one of " + ", ".join(map(str, s["enum"]))
+    t = s.get("type")
+    if t == "boolean":
+        return "true or false"
+    if t in ("number", "integer"):
+        noun = "a finite number" if t == "number" else "an integer"
+        lo = ("(", s["exclusiveMinimum"]) if "exclusiveMinimum" in s else None
+        lo = lo or (("[", s["minimum"]) if "minimum" in s else None)
+        hi = (")", s["exclusiveMaximum"]) if "exclusiveMaximum" in s else None
+        hi = hi or (("]", s["maximum"]) if "maximum" in s else None)
+        if lo and hi:
+            return f"{noun} in {lo[0]}{g(lo[1])}, {g(hi[1])}{hi[0]}"
+        if lo:
+            return f"{noun} {'>' if lo[0] == '(' else '>='} {g(lo[1])}"
+        if hi:
+            return f"{noun} {'<' if hi[0] == ')' else '<='} {g(hi[1])}"
+        return noun
+    if t == "array":
+        n_min, n_max = s.get("minItems", 0), s.get("maxItems")
+        what = "distinct values" if s.get("uniqueItems") else "values"
+        if n_max is not None and n_max == n_min:
+            head = f"a list of exactly {n_min} {what}"
+        elif n_min > 1:
+            head = f"a list of {n_min} or more {what}"
+        else:
+            head = f"a{' non-empty' if n_min == 1 else ''} list of {what}"
+        if "prefixItems" in s:
+            parts = ", ".join(describe_allowed(x, root) for x in s["prefixItems"])
+            return f"{head} [{parts}]"
+        if "items" in s:
+            return f"{head}, each {describe_allowed(s['items'], root)}"
+        return head
+    if t == "object":
+        return "a mapping with keys " + ", ".join(s.get("properties", {}))
+    if t == "string":
+        return "a string"
+    return "valid"
+
+
+def schema_error_message(error: Any, root: dict) -> str:
+    """One line naming key, value and what is allowed, from a jsonschema ValidationError."""
+    path = list(error.absolute_path)
+    kind, value = error.validator, error.instance
+    schema = _resolve(error.schema, root)
+    if kind == "required":
+        missing = [k for k in error.validator_value if k not in value]
+        k = missing[0] if missing else "?"
+        return (
+            f"{_key([*path, k])} is missing: it must be "
+            f"{describe_allowed(schema.get('properties', {}).get(k), root)}"
+        )
+    if kind == "additionalProperties":
+        allowed = list(schema.get("properties", {}))
+        unknown = [k for k in value if k not in allowed]
+        k = unknown[0] if unknown else "?"
+        where = f"in {_key(path)}" if path else "at the top level"
+        return (
+            f"{_key([*path, k])} = {_show(value.get(k))}: unknown key; allowed {where}: "
+            + ", ".join(allowed)
+        )
+    return f"{_key(path)} = {_show(value)}: must be {describe_allowed(schema, root)}"
+
+
+def _numbers(value: Any, path: tuple = ()):
+    """Every (path, number) of a nested config."""
+    if isinstance(value, dict):
+        for k, v in value.items():
+            yield from _numbers(v, (*path, k))
+    elif isinstance(value, (list, tuple)):
+        for i, v in enumerate(value):
+            yield from _numbers(v, (*path, i))
+    elif isinstance(value, (int, float)) and not isinstance(value, bool):
+        yield path, value
+
+
+def check_config(config: dict[str, Any], schema: dict | None = None) -> None:
+    """Checks the JSON schema cannot express (NaN and inf pass its bounds, ranges, physics).
+
+    Every message is one line naming the key, its value and what is allowed; `schema` (the
+    workflow's config schema) words the allowed range of a non-finite value.
+    """
+    for path, v in _numbers(config):
+        if not math.isfinite(v):
+            allowed = describe_allowed(_subschema(schema, path) if schema else None, schema)
+            raise RotbeamInputError(f"{_key(path)} = {v!r}: must be {allowed}")
     try:
         Beam(**config["beam"])
     except TypeError as exc:
@@ -48,14 +177,70 @@ def check_config(config: dict[str, Any]) -> None:
     for name in ("fig4", "boundary", "fig7"):
         lo, hi = config[name]["lo"], config[name]["hi"]
         if not lo < hi:
-            raise RotbeamInputError(f"config {name}: lo={lo} must be < hi={hi}")
+            raise RotbeamInputError(
+                f"{name}.lo = {lo!r}, {name}.hi = {hi!r}: the scan range is empty or reversed; "
+                f"must be lo < hi (fractions of f_0)"
+            )
     f3 = config["fig3"]
     if not f3["f_d_min"] < f3["f_d_max"]:
         raise RotbeamInputError(
-            f"config fig3: f_d_min={f3['f_d_min']} must be < f_d_max={f3['f_d_max']}"
+            f"fig3.f_d_min = {f3['f_d_min']!r}, fig3.f_d_max = {f3['f_d_max']!r}: the range is "
+            f"empty or reversed; must be f_d_min < f_d_max"
         )
-    for beam in fig7_beams(config).values():
-        Beam(**beam)
+    R = config["beam"]["R"]
+    for i, L in enumerate(config["fig7"]["L"]):
+        if not L < R:
+            raise RotbeamInputError(
+                f"fig7.L[{i}] = {L!r}: must be < beam.R = {R!r} m (every Fig. 7 beam keeps the "
+                f"reference R, and its clamp must sit off the axis)"
+            )
+    for bid, beam in fig7_beams(config).items():
+        try:
+            Beam(**beam)
+        except RotbeamInputError as exc:
+            raise RotbeamInputError(f"fig7 beam {bid}: {exc}") from None
+    from .params import Effects
+    from .sweeps import numerics_from_config
+
+    Effects.from_list(config["effects"])
+    numerics_from_config(config.get("numerics"))
+
+
+def validate_config(
+    config: dict[str, Any],
+    schema_path: str | Path,
+    schema_validate: Callable[[dict[str, Any]], None] | None = None,
+) -> dict[str, Any]:
+    """The workflow's config check: numbers given as strings become numbers, then the JSON
+    schema (`schema_validate`: snakemake.utils.validate in the workflow, jsonschema by default),
+    then `check_config`.  Returns the coerced config; raises RotbeamInputError with one line
+    naming the key, the value and what is allowed."""
+    from .scene import load_yaml
+
+    root = load_yaml(Path(schema_path).read_text())
+    config = coerce_numbers(config)
+    if schema_validate is None:
+        import jsonschema
+
+        def schema_validate(c: dict[str, Any]) -> None:
+            jsonschema.Draft202012Validator(root).validate(c)
+
+    try:
+        schema_validate(config)
+    except Exception as exc:  # jsonschema's, or snakemake's WorkflowError wrapping it
+        err = next(
+            (
+                e
+                for e in (exc, exc.__cause__, exc.__context__)
+                if e is not None and hasattr(e, "validator") and hasattr(e, "absolute_path")
+            ),
+            None,
+        )
+        if err is None:
+            raise RotbeamInputError(" ".join(str(exc).split())) from None
+        raise RotbeamInputError(schema_error_message(err, root)) from None
+    check_config(config, root)
+    return config
 
 
 def boundary_lines(beam: dict[str, float], c_max: list[float], scan: dict, amplitude: float):

@@ -14,7 +14,6 @@ import pandas as pd
 from .integrate import Numerics
 from .modes import natural_frequencies_hz
 from .params import Beam, Drive, Effects, RotbeamInputError, drive_groups
-from .quasistatic import QuasiStaticError
 from .scene import Scene, simulate
 
 COLUMNS = [
@@ -72,7 +71,9 @@ def scan_line(
             row["extrapolated"] = bool(s.get("extrapolated", False))
             if res.dynamic.periodic is not None and res.dynamic.periodic.converged:
                 guess = res.dynamic.periodic.theta.T
-        except (QuasiStaticError, np.linalg.LinAlgError, FloatingPointError, ValueError) as exc:
+        except RotbeamInputError:
+            raise
+        except Exception as exc:  # one failed point is a row with its reason, not a lost line
             row.update({"rms_dynamic": math.nan, "rms_quasistatic": math.nan,
                         "delta_rms": math.nan, "converged": False, "status": -2,
                         "message": f"{type(exc).__name__}: {exc}", "periods": 0,

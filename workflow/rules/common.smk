@@ -1,3 +1,4 @@
+import sys
 from pathlib import Path
 
 from snakemake.utils import validate
@@ -7,19 +8,23 @@ import rotbeam
 from rotbeam.params import RotbeamInputError
 from rotbeam.studies import (
     REF,
-    check_config,
-    coerce_numbers,
     fig7_beams,
     lines_from_config,
     series_from_config,
+    validate_config,
 )
 
-config.update(coerce_numbers(dict(config)))
-validate(config, schema="../schemas/config.schema.yaml")
+# Before any job: the JSON schema (snakemake's validate), then what it cannot express (NaN and
+# inf, ranges, physics).  A bad value stops the run with one line naming key, value and what is
+# allowed, and exit status 2.
+SCHEMA = workflow.source_path("../schemas/config.schema.yaml")
 try:
-    check_config(config)
+    config.update(
+        validate_config(dict(config), SCHEMA, lambda c: validate(c, schema=SCHEMA))
+    )
 except RotbeamInputError as exc:
-    raise ValueError(f"invalid config: {exc}") from None
+    print(f"rotbeam: invalid config: {exc}", file=sys.stderr)
+    sys.exit(2)
 
 LINES = lines_from_config(config)
 SERIES = series_from_config(config)
@@ -36,6 +41,10 @@ PKG = Path(rotbeam.__file__).parent
 # cheap downstream rules rerun when the package code they use changes
 CODE_ANALYSIS = [str(PKG / f) for f in ("boundary.py", "criterion.py")]
 CODE_FIGURES = [str(PKG / f) for f in ("figures.py", "plotting.py")]
+CODE_SOLVER = [
+    str(PKG / f)
+    for f in ("bench.py", "elastica.py", "integrate.py", "periodic.py", "trbdf2.py")
+]
 
 
 def line_spec(wildcards):

@@ -9,8 +9,9 @@ from rotbeam.sweeps import numerics_from_config, scan_line
 
 spec = snakemake.params.spec
 numerics = dict(snakemake.params.numerics)
-if "N" in spec:
+if "N" in spec:  # the grid-convergence lines (Fig. B.8) study the raw grid: no extrapolation
     numerics["N"] = spec["N"]
+    numerics["extrapolate"] = False
 with open(snakemake.log[0], "w") as log:
 
     def say(msg: str) -> None:

@@ -1,0 +1,263 @@
+"""Issue #6, nothing lost: a failed sweep point is a row with its reason and the line finishes;
+the fit says how many lines it used and why it dropped the others; a killed writer leaves no
+file at the final path; an interrupted workflow resumes with only its unfinished jobs."""
+
+import base64
+import hashlib
+import json
+import math
+import os
+import re
+import shutil
+import signal
+import subprocess
+import sys
+import time
+from dataclasses import replace
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pytest
+
+import rotbeam.sweeps
+from rotbeam.boundary import boundary_table, c_per_threshold, fit_c
+from rotbeam.integrate import Numerics
+from rotbeam.io import write_csv
+from rotbeam.params import Beam
+from rotbeam.sweeps import COLUMNS, scan_line
+
+ROOT = Path(__file__).resolve().parents[1]
+REF_BEAM = dict(L=0.040, h=0.002, b=0.010, E=1.22e6, rho=1170.2, R=0.155, gamma=0.039)
+
+
+# --- (1) a failed point is recorded, the rest of the line finishes -----------------------------
+
+
+def test_failed_sweep_points_are_rows_with_their_reason(monkeypatch, tmp_path):
+    simulate = rotbeam.sweeps.simulate
+
+    def flaky(scene, **kw):
+        if scene.drive.f_d == 2.0:  # the solver raises
+            raise np.linalg.LinAlgError("singular Jacobian (forced by the test)")
+        if scene.drive.f_d == 3.0:  # the time budget runs out
+            scene = replace(scene, numerics=replace(scene.numerics, max_seconds=1e-4))
+        return simulate(scene, **kw)
+
+    monkeypatch.setattr(rotbeam.sweeps, "simulate", flaky)
+    log = []
+    df = scan_line(Beam(), 5.0, [1.0, 2.0, 3.0, 4.0], numerics=Numerics(N=6), log=log.append)
+    assert list(df["f_d"]) == [1.0, 2.0, 3.0, 4.0] and list(df.columns) == COLUMNS
+    ok = df.set_index("f_d")
+    assert ok.loc[2.0, "status"] == -2 and not ok.loc[2.0, "converged"]
+    assert "LinAlgError: singular Jacobian" in ok.loc[2.0, "message"]
+    assert math.isnan(ok.loc[2.0, "delta_rms"])
+    assert ok.loc[3.0, "status"] == 1 and not ok.loc[3.0, "converged"]
+    assert "time budget" in ok.loc[3.0, "message"]
+    assert ok.loc[1.0, "converged"] and ok.loc[4.0, "converged"]  # the line went on
+    assert "FAILED: LinAlgError" in log[1] and len(log) == 4
+
+    # the failure survives the CSV and is counted downstream
+    write_csv(df, tmp_path / "line.csv")
+    back = pd.read_csv(tmp_path / "line.csv")
+    assert "singular Jacobian" in back.loc[1, "message"]
+    table = boundary_table([back], [0.1], REF_BEAM)
+    row = table.iloc[0]
+    # the out-of-budget point is left out of f_d* (its RMS is not a steady state) and counted
+    assert row["points_failed"] == 2 and row["points_used"] == 2
+    assert row["points_unconverged"] == 1
+
+
+# --- (2) the fit says how many lines it used ----------------------------------------------------
+
+
+def line(c_max: float, f0: float, deltas) -> pd.DataFrame:
+    f = f0 * np.linspace(0.1, 0.6, len(deltas))
+    return pd.DataFrame({
+        "omega0": 1.0, "f_d": f, "amplitude": 1.0, "C_max": c_max, "f0_hz": f0,
+        "delta_rms": deltas, "converged": True,
+    })  # fmt: skip
+
+
+def test_fit_counts_used_and_dropped_lines():
+    rising = [0.02, 0.05, 0.08, 0.12, 0.2, 0.3]
+    lines = [
+        line(1.0, 7.0, rising),
+        line(10.0, 8.0, rising),
+        line(100.0, 12.0, rising),
+        line(300.0, 20.0, [0.01] * 6),  # never reaches the threshold
+        pd.DataFrame(columns=COLUMNS),  # an empty line (no scanned point)
+    ]
+    table = boundary_table(lines, [0.1], REF_BEAM)
+    assert len(table) == 5  # the empty line is a row too
+    fit = fit_c(table)
+    assert fit["points_used"] == 3 and fit["points_dropped"] == 2
+    reasons = {d["C_max"] if not math.isnan(d["C_max"]) else "empty": d["reason"]
+               for d in fit["dropped"]}  # fmt: skip
+    assert "no point reaches the threshold" in reasons[300.0]
+    assert "empty line" in reasons["empty"]
+    json.dumps(fit)  # fig6/fit.json and fig7/fit.json carry it
+    per = c_per_threshold(table).iloc[0]
+    assert per["lines_used"] == 3 and per["lines_dropped"] == 2
+    assert per["grid_lines_used"] == 3 and per["grid_lines_dropped"] == 2
+
+
+# --- (3) atomic writes ----------------------------------------------------------------------------
+
+WRITER = """
+import pathlib, sys, time
+import pandas as pd
+from rotbeam import io
+
+kind, path = sys.argv[1], sys.argv[2]
+
+def stall(target):
+    with open(target, "w") as f:
+        f.write("a,b\\n1,")  # half a file, then the writer is killed
+        f.flush()
+    print("writing", flush=True)
+    time.sleep(120)
+
+if kind == "csv":
+    pd.DataFrame.to_csv = lambda self, target, **kw: stall(target)
+    io.write_csv(pd.DataFrame({"a": [1], "b": [2]}), path)
+else:
+    pathlib.Path.write_text = lambda self, text, *a, **kw: stall(self)
+    io.write_json({"c": 0.3}, path)
+"""
+
+
+@pytest.mark.parametrize("kind, name", [("csv", "line.csv"), ("json", "fit.json")])
+@pytest.mark.parametrize("existing", [False, True])
+def test_killed_writer_leaves_no_file_at_the_final_path(tmp_path, kind, name, existing):
+    target = tmp_path / "out" / name
+    if existing:
+        target.parent.mkdir()
+        target.write_text("old, complete\n")
+    p = subprocess.Popen(
+        [sys.executable, "-c", WRITER, kind, str(target)], stdout=subprocess.PIPE, text=True
+    )
+    assert p.stdout.readline().strip() == "writing"
+    p.kill()
+    p.wait(30)
+    assert list(target.parent.glob(f".{name}.*.part")), "the kill did not hit the write"
+    if existing:
+        assert target.read_text() == "old, complete\n"
+    else:
+        assert not target.exists()
+
+
+# --- (4) interrupt the quick workflow, rerun: only unfinished jobs run ----------------------------
+
+LINES = ["fig3", "fig4_w10", "cmax1", "cmax10", "cmax100", "cmax787"]
+TARGETS = [f"results/sims/ref/{name}.csv" for name in LINES]
+ENV = dict(os.environ, OPENBLAS_NUM_THREADS="1")
+
+
+def snakemake(work: Path, *args: str, timeout: float = 300) -> subprocess.CompletedProcess:
+    cmd = [sys.executable, "-m", "snakemake", *TARGETS, "--cores", "2", *args]
+    return subprocess.run(
+        [*cmd, "--configfile", "config/quick.yaml"],
+        cwd=work, env=ENV, capture_output=True, text=True, timeout=timeout,
+    )  # fmt: skip
+
+
+def plan(work: Path) -> dict[str, str]:
+    """`snakemake --summary`: output file -> 'no update' / 'update pending'."""
+    p = snakemake(work, "--summary")
+    assert p.returncode == 0, p.stderr[-3000:]
+    rows = [r.split("\t") for r in p.stdout.splitlines() if r.startswith("results/")]
+    return {r[0]: r[-1] for r in rows}
+
+
+def jobs_run(text: str) -> dict[str, int]:
+    """The job-stats table snakemake prints before running (or with -n)."""
+    jobs, inside = {}, False
+    for row in text.splitlines():
+        parts = row.split()
+        if row.startswith("job ") and "count" in row:
+            inside = True
+        elif inside and parts and parts[0] == "total":
+            break
+        elif inside and len(parts) == 2 and parts[1].isdigit():
+            jobs[parts[0]] = int(parts[1])
+    return jobs
+
+
+def fingerprint(path: Path) -> tuple[int, str]:
+    return path.stat().st_mtime_ns, hashlib.sha256(path.read_bytes()).hexdigest()
+
+
+def complete_line(path: Path) -> bool:
+    df = pd.read_csv(path)
+    return len(df) == 8 and {"f_d", "delta_rms", "converged", "message"} <= set(df.columns)
+
+
+@pytest.mark.parametrize("interrupt", ["SIGTERM", "Ctrl-C"])
+def test_interrupted_workflow_reruns_only_unfinished_jobs(tmp_path, interrupt):
+    """SIGTERM is snakemake's graceful stop: running jobs finish and are recorded.  Ctrl-C
+    (SIGINT to the process group) kills the running jobs; a job that had just written its
+    output may stay marked incomplete (snakemake had no time to record it): its file is
+    complete (atomic writes) but the rerun needs --rerun-incomplete and redoes that line."""
+    work = tmp_path / "wf"
+    work.mkdir()
+    shutil.copy(ROOT / "Snakefile", work)
+    shutil.copytree(ROOT / "config", work / "config")
+    shutil.copytree(ROOT / "workflow", work / "workflow")
+    sims = work / "results" / "sims" / "ref"
+
+    # first run: interrupt it once one line is finished and recorded
+    log = work / "run1.log"
+    cmd = [sys.executable, "-m", "snakemake", *TARGETS, "--cores", "2"]
+    with open(log, "w") as out:
+        p = subprocess.Popen(
+            [*cmd, "--configfile", "config/quick.yaml"],
+            cwd=work, env=ENV, stdout=out, stderr=subprocess.STDOUT, start_new_session=True,
+        )  # fmt: skip
+        t0 = time.monotonic()
+        while p.poll() is None and time.monotonic() - t0 < 180:
+            if re.search(r"\d+ of \d+ steps", log.read_text()) and list(sims.glob("*.csv")):
+                break
+            time.sleep(0.05)
+        assert p.poll() is None, "the run finished before it could be interrupted"
+        if interrupt == "SIGTERM":
+            p.send_signal(signal.SIGTERM)
+        else:
+            os.killpg(p.pid, signal.SIGINT)
+        assert p.wait(180) != 0
+    done = sorted(sims.glob("*.csv"))
+    missing = [t for t in TARGETS if not (work / t).exists()]
+    assert done and missing, (done, log.read_text()[-3000:])
+
+    # no partial outputs: every file at a final path is complete (a job killed inside its
+    # atomic write may leave a hidden .part file, never a final one)
+    assert all(complete_line(f) for f in done)
+    leftovers = [f for f in (work / "results").rglob(".*") if f.is_file()]
+    assert all(f.name.endswith(".part") for f in leftovers), leftovers
+    if interrupt == "SIGTERM":
+        assert not leftovers
+    incomplete = work / ".snakemake" / "incomplete"
+    marked = [base64.b64decode(f.name).decode() for f in incomplete.glob("*")]
+    if interrupt == "SIGTERM":
+        assert not marked, marked
+    redo = sorted(set(missing) | set(marked))
+    assert len(redo) < len(TARGETS)
+
+    # the plan: exactly the unfinished lines
+    finished = {f.name: fingerprint(f) for f in done if f"results/sims/ref/{f.name}" not in redo}
+    assert finished
+    if not marked:
+        pending = plan(work)
+        for t in TARGETS:
+            assert pending[t] == ("update pending" if t in redo else "no update"), (t, pending)
+    extra = ["--rerun-incomplete"] if marked else []
+    dry = snakemake(work, "-n", *extra)
+    assert dry.returncode == 0, dry.stderr[-3000:]
+    assert jobs_run(dry.stdout) == {"sweep_line": len(redo)}
+
+    # rerun to the end: the finished outputs of the first run are untouched
+    rerun = snakemake(work, *extra)
+    assert rerun.returncode == 0, rerun.stderr[-3000:]
+    assert jobs_run(rerun.stdout + rerun.stderr) == {"sweep_line": len(redo)}
+    assert all(complete_line(work / t) for t in TARGETS)
+    assert {f: fingerprint(sims / f) for f in finished} == finished

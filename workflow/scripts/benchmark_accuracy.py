@@ -1,0 +1,17 @@
+"""Work-precision benchmark: every run's error and wall time, speed-ups, the figure."""
+
+# ruff: noqa: F821
+# (`snakemake` is injected by Snakemake)
+import sys
+
+from rotbeam.bench import plan_from_dict, run_benchmark, write_outputs
+
+with open(snakemake.log[0], "w") as log:
+    plan = plan_from_dict(snakemake.params.plan)
+
+    def say(msg: str) -> None:
+        print(msg, file=log, flush=True)
+        print(f"[benchmark_accuracy] {msg}", file=sys.stderr, flush=True)
+
+    runs, refs = run_benchmark(plan, progress=say)
+    write_outputs(runs, refs, plan, snakemake.output.csv.removesuffix(".csv"))
