@@ -1,0 +1,393 @@
+"""TR-BDF2: a one-step, second-order, L-stable implicit integrator for `solve_ivp`.
+
+This is the method of MATLAB's ode23tb (M. E. Hosea and L. F. Shampine, "Analysis and
+implementation of TR-BDF2", Appl. Numer. Math. 20 (1996) 21-37), written as a
+`scipy.integrate.OdeSolver` so that ``solve_ivp(fun, t_span, y0, method=TRBDF2, ...)`` behaves
+like ``method="Radau"`` (same options, status, message, nfev/njev/nlu, dense output, t_eval).
+Why: a step needs one real n x n LU per step size (Radau: a real and a complex one of the
+3-stage system) and about five f evaluations; being second order it suits modest accuracies.
+
+Method.  gamma = 2 - sqrt(2), d = gamma/2.  A step of size h from (t_n, y_n), f_n = f(t_n, y_n):
+
+    TR   (over [t_n, t_n + gamma h]):  z - d h f(t_n + gamma h, z) = y_n + d h f_n
+    BDF2 (through t_n, t_n + gamma h, t_n + h):
+         y_{n+1} - d h f(t_n + h, y_{n+1}) = a z + b y_n,
+         a = 1/(gamma (2 - gamma)),  b = -(1 - gamma)^2/(gamma (2 - gamma)).
+
+Derivation / checks (verified numerically, see tests/test_trbdf2.py):
+
+* BDF2 on the nodes 0, gamma, 1 has leading coefficient (1 - gamma)/(2 - gamma) on h f_{n+1};
+  with gamma = 2 - sqrt(2) it equals gamma/2 = d, so both stages have the same iteration
+  matrix I - d h J (one LU per step size).  a + b = 1 (consistency).
+* As a Runge-Kutta method (ESDIRK) with c = (0, gamma, 1): rows A = [0 0 0; d d 0; w w d],
+  weights b = (w, w, d), w = a d = sqrt(2)/4 (2 w + d = 1).  sum b c = 1/2 (order 2),
+  sum b c^2 = sqrt(2) - 1 != 1/3, so exactly order 2.
+* Stability function R(z) = (a (1 + d z)/(1 - d z) + b)/(1 - d z); R(z) - e^z = -k z^3 + O(z^4)
+  with k = (-3 gamma^2 + 4 gamma - 2)/(12 (2 - gamma)) = -0.04044; |R(iy)| <= 1 and
+  R(z) ~ (a - b)/(d z) = (2 + 2 sqrt(2))/z -> 0 as z -> -inf: A- and L-stable.
+* Error estimate (Hosea & Shampine): the companion weights bhat = ((1-w)/3, (3w+1)/3, d/3)
+  satisfy all four third-order conditions, so e = h sum (b - bhat)_i f_i
+  = h ((4w - 1)/3 f_n - 1/3 f_z + 2d/3 f_{n+1}) estimates the local error of y_{n+1}.  The
+  coefficients sum to 0 and annihilate linear f, so e is -1 times the Bank et al. (1985)
+  divided-difference estimate 2 k h (f_n/gamma - f_z/(gamma(1-gamma)) + f_{n+1}/(1-gamma)).
+  For stiff components e ~ h f is not small; as in ode23tb it is filtered by solving
+  (I - d h J) e_f = e, which keeps it bounded: for y' = lambda y and h lambda -> -inf,
+  e_f -> -((E_N - E_Z)/d) y_n = -1.61 y_n (the TR stage gives z ~ -y_n), so a stiff component
+  still away from its equilibrium limits h, and one that has decayed does not.
+  f_z and f_{n+1} are taken from the converged stage equations (no extra evaluations):
+  h f_z = (z - y_n)/d - h f_n,  h f_{n+1} = (y_{n+1} - a z - b y_n)/d.
+
+Control.  Simplified Newton per stage (at most 4 iterations) with scipy Radau's rate-based test
+and tolerance max(10 eps/rtol, min(0.03, rtol^0.5)); as in ode23tb, the rate seen earlier with
+the same LU lets a first iteration be accepted when its correction is 10x below that.  J is
+reused across steps and recomputed (as in Radau) after a step that needed > 2 iterations at a
+rate > 1e-3, or when Newton fails with an old J (then h is halved if it fails with a fresh one).
+The LU is redone whenever h changes.  Step size h_new = h min(5, max(0.2, 0.9 err^(-1/3))),
+err the RMS norm of e_f/(atol + rtol max(|y_n|, |y_{n+1}|)); as in Radau, h is kept (and the LU
+with it) when the ratio is below 1.2, and not increased right after a rejection.  This controls
+the local error: the global error grows like (number of steps) x rtol.  Dense output: cubic
+Hermite on y_n, f_n, y_{n+1}, f_{n+1}.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import Any
+
+import numpy as np
+from scipy.integrate import DenseOutput, OdeSolver
+from scipy.integrate._ivp.common import (
+    EPS,
+    norm,
+    num_jac,
+    select_initial_step,
+    validate_first_step,
+    validate_max_step,
+    validate_tol,
+    warn_extraneous,
+)
+from scipy.linalg import lu_factor, lu_solve
+from scipy.optimize._numdiff import group_columns
+from scipy.sparse import csc_matrix, issparse
+
+GAMMA = 2.0 - np.sqrt(2.0)  #: TR stage ends at t_n + GAMMA h
+D = GAMMA / 2.0  #: diagonal coefficient of both stages
+A_Z = 1.0 / (GAMMA * (2.0 - GAMMA))  #: BDF2 weight of z
+A_Y = -((1.0 - GAMMA) ** 2) / (GAMMA * (2.0 - GAMMA))  #: BDF2 weight of y_n
+W = A_Z * D  #: RK weight of f_n and f_z (sqrt(2)/4)
+#: local error estimate e = h (E_N f_n + E_Z f_z + E_1 f_{n+1}) (Hosea & Shampine)
+E_N, E_Z, E_1 = (4.0 * W - 1.0) / 3.0, -1.0 / 3.0, 2.0 * D / 3.0
+
+NEWTON_MAXITER = 4  #: simplified Newton iterations per stage
+MIN_FACTOR = 0.2  #: smallest step-size ratio
+MAX_FACTOR = 5.0  #: largest step-size ratio
+SAFETY = 0.9
+
+
+def stability_function(z: complex | np.ndarray) -> complex | np.ndarray:
+    """R(z) with y_{n+1} = R(h lambda) y_n for y' = lambda y (for checks of the coefficients)."""
+    z = np.asarray(z, dtype=complex)
+    tr = (1.0 + D * z) / (1.0 - D * z)
+    return (A_Z * tr + A_Y) / (1.0 - D * z)
+
+
+def _newton(
+    fun: Callable[[float, np.ndarray], np.ndarray],
+    t: float,
+    psi: np.ndarray,
+    dh: float,
+    x0: np.ndarray,
+    LU: Any,
+    scale: np.ndarray,
+    tol: float,
+    rate0: float | None = None,
+) -> tuple[bool, int, np.ndarray, float | None]:
+    """Solve x - dh f(t, x) = psi by simplified Newton with a fixed LU of I - dh J.
+
+    Same rate-based convergence test as scipy's Radau.  `rate0`, the rate seen earlier with
+    the same LU, lets the first iteration be accepted if its correction is 10 times below the
+    tolerance (as ode23tb does).  Returns (converged, iterations, x, rate).
+    """
+    x = x0.copy()
+    dx_norm_old = None
+    rate = None
+    converged = False
+    k = 0
+    for k in range(NEWTON_MAXITER):
+        fx = fun(t, x)
+        if not np.all(np.isfinite(fx)):
+            break
+        dx = lu_solve(LU, psi + dh * fx - x, overwrite_b=True)
+        dx_norm = norm(dx / scale)
+        if dx_norm_old is not None:
+            rate = dx_norm / dx_norm_old
+        if rate is not None and (
+            rate >= 1 or rate ** (NEWTON_MAXITER - k) / (1 - rate) * dx_norm > tol
+        ):
+            break
+        x += dx
+        if rate is None and rate0 is not None and rate0 < 1:
+            if rate0 / (1 - rate0) * dx_norm < 0.1 * tol:
+                converged = True
+                break
+        if dx_norm == 0 or (rate is not None and rate / (1 - rate) * dx_norm < tol):
+            converged = True
+            break
+        dx_norm_old = dx_norm
+    return converged, k + 1, x, rate
+
+
+class HermiteDenseOutput(DenseOutput):
+    """Cubic Hermite interpolant on [t_old, t] from the end values and slopes of a step."""
+
+    def __init__(
+        self,
+        t_old: float,
+        t: float,
+        y_old: np.ndarray,
+        f_old: np.ndarray,
+        y: np.ndarray,
+        f: np.ndarray,
+    ) -> None:
+        super().__init__(t_old, t)
+        self.h = t - t_old
+        self.y_old = y_old
+        self.dy = y - y_old
+        self.hf_old = self.h * f_old
+        self.hf = self.h * f
+
+    def _call_impl(self, t: np.ndarray) -> np.ndarray:
+        x = (np.asarray(t) - self.t_old) / self.h
+        # y(x) = y0 + x dy + x (1-x) [ (1-x) h f0 - x h f1 + (2x - 1) dy ]
+        if x.ndim == 0:
+            return (
+                self.y_old
+                + x * self.dy
+                + x * (1 - x) * ((1 - x) * self.hf_old - x * self.hf + (2 * x - 1) * self.dy)
+            )
+        c = x * (1 - x)
+        return (
+            self.y_old[:, None]
+            + self.dy[:, None] * x
+            + self.hf_old[:, None] * (c * (1 - x))
+            - self.hf[:, None] * (c * x)
+            + self.dy[:, None] * (c * (2 * x - 1))
+        )
+
+
+class TRBDF2(OdeSolver):
+    """TR-BDF2 (ode23tb) for stiff problems; use as ``solve_ivp(..., method=TRBDF2)``.
+
+    Options as for Radau: rtol, atol, jac (callable, array or None for finite differences),
+    jac_sparsity (only to group finite differences; matrices are dense), max_step, first_step,
+    vectorized.  Second order, L-stable; one real LU of I - d h J per step size.
+    """
+
+    def __init__(
+        self,
+        fun: Callable[[float, np.ndarray], np.ndarray],
+        t0: float,
+        y0: np.ndarray,
+        t_bound: float,
+        max_step: float = np.inf,
+        rtol: float = 1e-3,
+        atol: float | np.ndarray = 1e-6,
+        jac: Callable | np.ndarray | None = None,
+        jac_sparsity: Any = None,
+        vectorized: bool = False,
+        first_step: float | None = None,
+        **extraneous: Any,
+    ) -> None:
+        warn_extraneous(extraneous)
+        super().__init__(fun, t0, y0, t_bound, vectorized)
+        self.y_old = None
+        self.max_step = validate_max_step(max_step)
+        self.rtol, self.atol = validate_tol(rtol, atol, self.n)
+        self.f = self.fun(self.t, self.y)
+        if first_step is None:
+            self.h_abs = select_initial_step(
+                self.fun, self.t, self.y, t_bound, self.max_step, self.f, self.direction,
+                2, self.rtol, self.atol,
+            )  # fmt: skip
+        else:
+            self.h_abs = validate_first_step(first_step, t0, t_bound)
+        self.newton_tol = max(10 * EPS / rtol, min(0.03, rtol**0.5))
+        self.sol = None
+        self.jac_factor = None
+        self.jac, self.J = self._validate_jac(jac, jac_sparsity)
+        self.I = np.identity(self.n)
+        self.LU = None  #: LU of I - d h J for h = LU_h
+        self.LU_h = None
+        self.rate = None
+        self.current_jac = True
+
+    def _lu(self, h: float) -> Any:
+        """LU of the iteration matrix I - d h J shared by both stages."""
+        self.nlu += 1
+        return lu_factor(self.I - (D * h) * self.J, overwrite_a=True)
+
+    def _validate_jac(self, jac: Any, sparsity: Any) -> tuple[Callable | None, np.ndarray]:
+        """Jacobian as (callable that re-evaluates it or None if constant, dense matrix)."""
+        t0, y0 = self.t, self.y
+        if jac is None:
+            if sparsity is not None:
+                if issparse(sparsity):
+                    sparsity = csc_matrix(sparsity)
+                sparsity = (sparsity, group_columns(sparsity))
+
+            def jac_wrapped(t, y, f):
+                self.njev += 1
+                J, self.jac_factor = num_jac(
+                    self.fun_vectorized, t, y, f, self.atol, self.jac_factor, sparsity
+                )
+                return J.toarray() if issparse(J) else np.asarray(J, dtype=float)
+
+            J = jac_wrapped(t0, y0, self.f)
+        elif callable(jac):
+
+            def jac_wrapped(t, y, _=None):
+                self.njev += 1
+                J = jac(t, y)
+                return J.toarray().astype(float) if issparse(J) else np.asarray(J, dtype=float)
+
+            J = jac_wrapped(t0, y0)
+        else:
+            J = jac.toarray().astype(float) if issparse(jac) else np.asarray(jac, dtype=float)
+            jac_wrapped = None
+        if J.shape != (self.n, self.n):
+            raise ValueError(
+                f"`jac` is expected to have shape {(self.n, self.n)}, but actually has {J.shape}."
+            )
+        return jac_wrapped, J
+
+    def _stages(
+        self,
+        t: float,
+        y: np.ndarray,
+        f: np.ndarray,
+        h: float,
+        LU: Any,
+        rate0: float | None = None,
+    ) -> tuple[bool, int, float | None, np.ndarray, np.ndarray]:
+        """Both implicit stages of one step: (converged, max iterations, last rate, z, y_new)."""
+        dh = D * h
+        scale = self.atol + self.rtol * np.abs(y)
+        # TR predictor: the previous step's interpolant extrapolated (y_n on the first step)
+        z0 = y if self.sol is None else self.sol(t + GAMMA * h)
+        ok, it1, z, rate1 = _newton(
+            self.fun, t + GAMMA * h, y + dh * f, dh, z0, LU, scale, self.newton_tol, rate0
+        )
+        if not ok:
+            return False, it1, rate1, z, y
+        rate0 = rate1 if rate1 is not None else rate0
+        hfz = (z - y) / D - h * f
+        # BDF2 predictor: quadratic through y_n and z with slope f_z at z, taken at t_n + h
+        s = 1.0 - GAMMA
+        y0 = z + s * hfz + (s / GAMMA) ** 2 * (y - z + GAMMA * hfz)
+        ok, it2, y_new, rate2 = _newton(
+            self.fun, t + h, A_Z * z + A_Y * y, dh, y0, LU, scale, self.newton_tol, rate0
+        )
+        return ok, max(it1, it2), rate2 if rate2 is not None else rate0, z, y_new
+
+    def _error(
+        self, y: np.ndarray, f: np.ndarray, h: float, z: np.ndarray, y_new: np.ndarray, LU: Any
+    ) -> np.ndarray:
+        """Stiffness-filtered local error estimate (I - d h J)^-1 e."""
+        hf_z = (z - y) / D - h * f
+        hf_1 = (y_new - A_Z * z - A_Y * y) / D
+        e = E_N * h * f + E_Z * hf_z + E_1 * hf_1
+        return lu_solve(LU, e, overwrite_b=True)
+
+    def _step_impl(self) -> tuple[bool, str | None]:
+        t, y, f = self.t, self.y, self.f
+        max_step, atol, rtol = self.max_step, self.atol, self.rtol
+        min_step = 10 * np.abs(np.nextafter(t, self.direction * np.inf) - t)
+        h_abs = min(max(self.h_abs, min_step), max_step)
+        current_jac = self.current_jac
+        rejected = False
+        while True:
+            if h_abs < min_step:
+                return False, self.TOO_SMALL_STEP
+            h = h_abs * self.direction
+            t_new = t + h
+            if self.direction * (t_new - self.t_bound) > 0:
+                t_new = self.t_bound
+            h = t_new - t
+            h_abs = np.abs(h)
+            if self.LU is None or h != self.LU_h:
+                self.LU, self.LU_h = self._lu(h), h
+                self.rate = None  # convergence rate seen with this LU
+            converged, n_iter, rate, z, y_new = self._stages(t, y, f, h, self.LU, self.rate)
+            self.rate = rate
+            if not converged:
+                if not current_jac and self.jac is not None:
+                    self.J = self.jac(t, y, f)
+                    current_jac = True
+                    self.LU = None
+                    continue
+                h_abs *= 0.5
+                rejected = True
+                continue
+            err = self._error(y, f, h, z, y_new, self.LU)
+            scale = atol + np.maximum(np.abs(y), np.abs(y_new)) * rtol
+            err_norm = norm(err / scale)
+            if err_norm > 1:
+                h_abs *= max(MIN_FACTOR, SAFETY * err_norm ** (-1 / 3))
+                rejected = True
+                continue
+            break
+
+        recompute_jac = self.jac is not None and n_iter > 2 and (rate or 0.0) > 1e-3
+        with np.errstate(divide="ignore"):
+            factor = min(MAX_FACTOR, SAFETY * err_norm ** (-1 / 3))
+        if rejected:
+            factor = min(1.0, factor)
+        if not recompute_jac and factor < 1.2:
+            factor = 1.0  # keep h and with it the LU
+        f_new = self.fun(t_new, y_new)
+        if recompute_jac:
+            self.J = self.jac(t_new, y_new, f_new)
+            self.LU = None
+            current_jac = True
+        elif self.jac is not None:
+            current_jac = False
+        self.h_abs = h_abs * factor
+        self.current_jac = current_jac
+        self.y_old, self.t_old = y, t
+        self.t, self.y, self.f = t_new, y_new, f_new
+        self.sol = HermiteDenseOutput(t, t_new, y, f, y_new, f_new)
+        return True, None
+
+    def _dense_output_impl(self) -> HermiteDenseOutput:
+        return self.sol
+
+
+def fixed_steps(
+    fun: Callable[[float, np.ndarray], np.ndarray],
+    t_span: tuple[float, float],
+    y0: np.ndarray,
+    n_steps: int,
+    jac: Callable | np.ndarray | None = None,
+    newton_rtol: float = 1e-12,
+) -> np.ndarray:
+    """States at n_steps + 1 equally spaced instants taken with constant-h TR-BDF2 steps.
+
+    For convergence-order checks: the stages are the solver's own, Newton is iterated to
+    `newton_rtol` (with a fresh Jacobian per step), and there is no error control.
+    """
+    t0, t1 = map(float, t_span)
+    h = (t1 - t0) / n_steps
+    y0 = np.asarray(y0, dtype=float)
+    s = TRBDF2(fun, t0, y0, t1, rtol=newton_rtol, atol=newton_rtol, jac=jac, first_step=abs(h))
+    out = [s.y.copy()]
+    for i in range(n_steps):
+        t = t0 + i * h
+        if s.jac is not None:
+            s.J = s.jac(t, s.y, s.f)
+        ok, _, _, _, y_new = s._stages(t, s.y, s.f, h, s._lu(h))
+        if not ok:
+            raise RuntimeError(f"Newton did not converge in step {i} at t={t:g}")
+        s.y = y_new
+        s.f = s.fun(t + h, y_new)
+        out.append(y_new.copy())
+    return np.array(out)
