@@ -20,7 +20,8 @@ def rms(y: np.ndarray) -> float:
 
 
 def delta_rms(rms_dynamic: float, rms_quasistatic: float) -> float:
-    """|RMS_dyn - RMS_QS| / RMS_dyn (Eq. Delta_RMS); NaN only if both are zero."""
+    """|RMS_dyn - RMS_QS| / RMS_dyn (Eq. Delta_RMS); 0 when both are zero (no load), inf when
+    only the dynamic one is."""
     if rms_dynamic == 0.0:
         return 0.0 if rms_quasistatic == 0.0 else float("inf")
     return abs(rms_dynamic - rms_quasistatic) / rms_dynamic

@@ -26,7 +26,7 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 from .elastica import DiscreteElastica, _check_N
-from .modes import linear_forced_response
+from .modes import dimensionless_frequencies, linear_forced_response
 from .params import Dimensionless, RotbeamInputError
 from .periodic import PeriodicResult, solve_periodic_adaptive, trig_interpolate
 from .quasistatic import quasistatic_series
@@ -155,6 +155,24 @@ def initial_state(
     return np.concatenate([th[:, 1], (th[:, 2] - th[:, 0]) / (2 * h)]), None
 
 
+def slowest_decay_rate(model: DiscreteElastica, dl: Dimensionless) -> float:
+    """Slowest decay rate of the linearised transient, per unit tau.
+
+    The damping is mass-proportional (eta M), so a mode of undamped frequency w decays as
+    exp(-eta tau / 2) when underdamped (w > eta / 2) and, overdamped, as exp(-r tau) with
+    r = eta / 2 - sqrt(eta^2 / 4 - w^2) ~ w^2 / eta: slower.  The first mode at the lowest
+    rotation of the cycle is the slowest (stiffening only raises w).
+    """
+    eta = model.eta
+    if eta == 0.0:
+        return 0.0
+    ef = model.effects
+    lam_min = max(0.0, abs(dl.lam0) - abs(dl.alpha)) if ef.centrifugal else 0.0
+    w1 = float(dimensionless_frequencies(lam_min, dl.hub_ratio, 1, model.grid.N, ef.softening)[0])
+    half = eta / 2.0
+    return half - math.sqrt(half * half - w1 * w1) if w1 < half else half
+
+
 def _from_collocation(
     model: DiscreteElastica, dl: Dimensionless, num: Numerics, res: PeriodicResult, t0: float
 ) -> SteadyState:
@@ -163,15 +181,19 @@ def _from_collocation(
     one = trig_interpolate(res.theta.T, m).T  # (n, m) over one period
     theta = np.tile(one, (1, num.rms_periods))
     taus = period_samples(dl, 0, num.rms_periods, m)
-    ok = res.converged and res.harmonic_tail <= num.tail_tol
+    ok = res.converged and res.harmonic_tail <= num.tail_tol and model.eta > 0.0
     msg = f"collocation M={res.M}: {res.message}, harmonic tail {res.harmonic_tail:.2g}"
+    if model.eta == 0.0:
+        msg += "; undamped model has no steady state (a periodic orbit, not an attractor)"
+    elif not ok:
+        msg += " (not verified: collocation did not meet its tolerance)"
     return SteadyState(
         tau=taus,
         theta=theta,
         y_m=np.atleast_1d(model.grid.midspan(theta)),
         converged=ok,
         status=0 if ok else 1,
-        message=msg + ("" if ok else " (not verified: collocation did not meet its tolerance)"),
+        message=msg,
         periods=0,
         transient=res.harmonic_tail,
         seconds=time.perf_counter() - t0,
@@ -207,7 +229,7 @@ def steady_state(
     if not scale or not math.isfinite(scale):
         scale = abs(dl.alpha * dl.omega) * (dl.hub_ratio + 1.0) / 8.0 or 1.0
     wref = max(dl.omega, 1.0)
-    rho = math.exp(-model.eta * P / 2.0)
+    rho = math.exp(-slowest_decay_rate(model, dl) * P)
     # the per-period integration error must stay below what the transient bound can tell apart
     rtol = min(num.rtol, 0.1 * num.ss_tol * (1.0 - rho)) if rho < 1.0 else num.rtol
     rtol = max(rtol, 1e-12)
@@ -262,6 +284,8 @@ def steady_state(
     bound = math.inf
     seen_tau, seen_theta = np.array([0.0]), z[:n, None].copy()  # what we saw last
     max_periods = min(num.max_periods, max(2, int(num.max_tau / P)))
+    if model.eta == 0.0:  # no transient ever decays: show a few periods and say so
+        max_periods = min(max_periods, max(2, num.rms_periods))
     while k < max_periods:
         taus_k = period_samples(dl, k, 1, m)
         sol = run(k * P, (k + 1) * P, z, np.append(taus_k, (k + 1) * P))
@@ -297,7 +321,7 @@ def steady_state(
             # is within ss_tol of the steady state:
             # |Z_{k-p} - Z_inf| <= d (sum_{q<p} rho^-q + rho / (1 - rho))
             p = num.rms_periods
-            reach = sum(rho**-q for q in range(p)) + rho / (1.0 - rho)
+            reach = sum(rho**-q for q in range(p)) + rho / (1.0 - rho) if rho > 0 else math.inf
             reuse = k >= p and len(window) == p and d * reach / size <= num.ss_tol
             break
     else:
