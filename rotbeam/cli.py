@@ -63,7 +63,7 @@ def build_parser() -> argparse.ArgumentParser:
     s.add_argument("--amplitude", type=_finite, help="velocity amplitude a [rad/s] (default 1)")
     s.add_argument("--N", type=_int, help="grid intervals (default 40)")
     s.add_argument("--R", type=_finite, help="axis to undeformed tip [m] (default 0.155)")
-    s.add_argument("--method", help="Radau, BDF or LSODA")
+    s.add_argument("--method", help="Radau (default), BDF, LSODA or TRBDF2")
     s.add_argument("--rtol", type=_finite, help="time-stepper relative tolerance")
     s.add_argument("--effects", help="comma list of effects switched on, e.g. centrifugal,euler")
     s.add_argument("--json", action="store_true", help="print one JSON object")
