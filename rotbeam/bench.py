@@ -472,9 +472,8 @@ def plot(runs: pd.DataFrame, refs: pd.DataFrame, plan: BenchPlan, pdf: str, png:
     handles, labels = axes[0].get_legend_handles_labels()
     for ax in axes[len(scenes) + 1 :]:
         ax.axis("off")
-    fig.legend(handles, labels, loc="lower center", ncol=3, fontsize=7,
-               bbox_to_anchor=(0.5, -0.02 - 0.05 * (nrows == 1)))  # fmt: skip
-    fig.get_layout_engine().set(rect=(0, 0.1, 1, 0.9))
+    fig.legend(handles, labels, loc="lower center", ncol=3, fontsize=7, bbox_to_anchor=(0.5, 0.0))
+    fig.get_layout_engine().set(rect=(0, 0.12 + 0.1 * (nrows == 1), 1, 0.88 - 0.1 * (nrows == 1)))
     plotting.save(fig, pdf, png)
 
 
