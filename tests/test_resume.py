@@ -151,7 +151,7 @@ def test_killed_writer_leaves_no_file_at_the_final_path(tmp_path, kind, name, ex
 
 LINES = ["fig3", "fig4_w10", "cmax1", "cmax10", "cmax100", "cmax787"]
 TARGETS = [f"results/sims/ref/{name}.csv" for name in LINES]
-ENV = dict(os.environ, OPENBLAS_NUM_THREADS="1")
+ENV = dict(os.environ, OPENBLAS_NUM_THREADS="1", PYTHONUNBUFFERED="1")
 
 
 def snakemake(work: Path, *args: str, timeout: float = 300) -> subprocess.CompletedProcess:
@@ -203,6 +203,12 @@ def test_interrupted_workflow_reruns_only_unfinished_jobs(tmp_path, interrupt):
     work.mkdir()
     shutil.copy(ROOT / "Snakefile", work)
     shutil.copytree(ROOT / "config", work / "config")
+    # a finer grid than the quick config's N = 12 so that a line takes a few seconds: on an idle
+    # machine the quick lines finish faster than the signal can be aimed at one of them
+    quick = work / "config" / "quick.yaml"
+    text = quick.read_text()
+    assert "\n  N: 12\n" in text
+    quick.write_text(text.replace("\n  N: 12\n", "\n  N: 30\n", 1))
     shutil.copytree(ROOT / "workflow", work / "workflow")
     sims = work / "results" / "sims" / "ref"
 
