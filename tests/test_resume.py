@@ -193,6 +193,12 @@ def complete_line(path: Path) -> bool:
     return len(df) == 8 and {"f_d", "delta_rms", "converged", "message"} <= set(df.columns)
 
 
+def default_sigint() -> None:
+    """A shell's background job (`cmd &`, e.g. a CI runner) ignores SIGINT, and the ignore is
+    inherited: restore the default so that Ctrl-C reaches snakemake as from a terminal."""
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+
 @pytest.mark.parametrize("interrupt", ["SIGTERM", "Ctrl-C"])
 def test_interrupted_workflow_reruns_only_unfinished_jobs(tmp_path, interrupt):
     """SIGTERM is snakemake's graceful stop: running jobs finish and are recorded.  Ctrl-C
@@ -221,6 +227,7 @@ def test_interrupted_workflow_reruns_only_unfinished_jobs(tmp_path, interrupt):
         p = subprocess.Popen(
             [*cmd, "--configfile", "config/quick.yaml"],
             cwd=work, env=ENV, stdout=out, stderr=subprocess.STDOUT, start_new_session=True,
+            preexec_fn=default_sigint,
         )  # fmt: skip
         t0 = time.monotonic()
         while p.poll() is None and time.monotonic() - t0 < 180:
