@@ -193,10 +193,6 @@ def _run(scene: Scene) -> dict[str, Any]:
     }
 
 
-class _OutOfTime(Exception):
-    pass
-
-
 def baseline_run(plan: BenchPlan, omega0: float, f_d: float, N: int, rtol: float) -> dict:
     """The plain port of the paper: scipy Radau with its finite-difference Jacobian, from the
     straight beam at rest, over the a-priori transient time tau_tr = 2 ln(1 / target) / eta
@@ -206,6 +202,7 @@ def baseline_run(plan: BenchPlan, omega0: float, f_d: float, N: int, rtol: float
 
     from .criterion import delta_rms, rms
     from .elastica import DiscreteElastica
+    from .integrate import OutOfTime, first_order_rhs
     from .scene import quasistatic_midspan
 
     t0 = time.perf_counter()
@@ -214,22 +211,18 @@ def baseline_run(plan: BenchPlan, omega0: float, f_d: float, N: int, rtol: float
     n, P, m, p = model.n, dl.period, 64, 2
     K = math.ceil(2.0 * math.log(1.0 / plan.target) / dl.eta / P)
     taus = (K + np.arange(p * m) / m) * P
-    theta_qs, y_qs = quasistatic_midspan(dl, N, taus[:m])
+    _, y_qs = quasistatic_midspan(dl, N, taus[:m])
     atol = 1e-6  # scipy's default, as MATLAB's ode23tb: the plain port keeps it
     deadline = t0 + plan.max_seconds
 
-    def rhs(tau, z):
-        if time.perf_counter() > deadline:
-            raise _OutOfTime
-        acc, _, _ = model.acceleration(z[:n], z[n:], dl.lam(tau), dl.lam_dot(tau))
-        return np.concatenate([z[n:], acc])
+    rhs = first_order_rhs(model, dl, deadline)
 
     row = {"rms": math.nan, "delta_rms": math.nan, "converged": False, "status": 1,
            "periods": K + p, "nfev": 0, "njev": 0, "M": 0}  # fmt: skip
     try:
         sol = solve_ivp(rhs, (0.0, (K + p) * P), np.zeros(2 * n), method="Radau", rtol=rtol,
                         atol=atol, t_eval=taus)  # fmt: skip
-    except _OutOfTime:
+    except OutOfTime:
         row["message"] = f"out of time ({plan.max_seconds:g} s)"
     else:
         row.update(nfev=sol.nfev, njev=sol.njev, message=f"{K} + {p} periods: {sol.message}")

@@ -35,7 +35,7 @@ METHODS = ("Radau", "BDF", "LSODA", "TRBDF2")
 JACOBIANS = ("exact", "fd")
 
 
-class _OutOfTime(Exception):
+class OutOfTime(Exception):
     """Raised inside the right-hand side when the wall-time budget is spent."""
 
 
@@ -173,6 +173,22 @@ def slowest_decay_rate(model: DiscreteElastica, dl: Dimensionless) -> float:
     return half - math.sqrt(half * half - w1 * w1) if w1 < half else half
 
 
+def first_order_rhs(
+    model: DiscreteElastica, dl: Dimensionless, deadline: float
+) -> Callable[[float, np.ndarray], np.ndarray]:
+    """(Theta_t, Theta_tt) of the state z = (Theta, Theta_t); raises OutOfTime after `deadline`
+    (a time.perf_counter value), so that solve_ivp stops inside a step."""
+    n = model.n
+
+    def rhs(tau: float, z: np.ndarray) -> np.ndarray:
+        if time.perf_counter() > deadline:
+            raise OutOfTime
+        acc, _, _ = model.acceleration(z[:n], z[n:], dl.lam(tau), dl.lam_dot(tau))
+        return np.concatenate([z[n:], acc])
+
+    return rhs
+
+
 def _from_collocation(
     model: DiscreteElastica, dl: Dimensionless, num: Numerics, res: PeriodicResult, t0: float
 ) -> SteadyState:
@@ -239,11 +255,7 @@ def steady_state(
 
     deadline = t0 + num.max_seconds
 
-    def rhs(tau, z):
-        if time.perf_counter() > deadline:
-            raise _OutOfTime
-        acc, _, _ = model.acceleration(z[:n], z[n:], dl.lam(tau), dl.lam_dot(tau))
-        return np.concatenate([z[n:], acc])
+    rhs = first_order_rhs(model, dl, deadline)
 
     def jac(tau, z):
         return model.first_order_jacobian(z[:n], z[n:], dl.lam(tau), dl.lam_dot(tau))
@@ -260,7 +272,7 @@ def steady_state(
                 rhs, (tau_a, tau_b), z_a, method=method, rtol=rtol, atol=atol,
                 jac=jac if num.jacobian == "exact" else None, t_eval=t_eval,
             )  # fmt: skip
-        except _OutOfTime:
+        except OutOfTime:
             return None
         nfev += sol.nfev
         njev += sol.njev
