@@ -489,11 +489,23 @@ def plan_from_dict(spec: dict[str, Any] | None) -> BenchPlan:
         raise RotbeamInputError(
             f"benchmark: unknown key(s) {sorted(unknown)}; allowed: {', '.join(sorted(allowed))}"
         )
-    if "scenes" in spec:
-        spec["scenes"] = tuple((str(s[0]), float(s[1]), float(s[2])) for s in spec["scenes"])
-    for key in ("curves", "tolerances", "grid", "ref_N"):
-        if key in spec:
-            spec[key] = tuple(spec[key])
+    shapes = {"scenes": "a list of [label, Omega_0 rad/s, f_d Hz]", "curves": "a list of names",
+              "tolerances": "a list of numbers in [1e-12, 0.1]", "grid": "a list of integers",
+              "ref_N": "three integers >= 3"}  # fmt: skip
+    for key, what in shapes.items():
+        if key not in spec:
+            continue
+        try:
+            if key == "scenes":
+                spec[key] = tuple((str(s[0]), float(s[1]), float(s[2])) for s in spec[key])
+            elif key in ("grid", "ref_N"):
+                spec[key] = tuple(int(v) for v in spec[key])
+            elif key == "tolerances":
+                spec[key] = tuple(float(v) for v in spec[key])
+            else:
+                spec[key] = tuple(str(v) for v in spec[key])
+        except (TypeError, ValueError, IndexError):
+            raise RotbeamInputError(f"benchmark.{key} = {spec[key]!r}: must be {what}") from None
     return replace(base, **spec)
 
 

@@ -145,3 +145,16 @@ def test_bad_plan_names_the_key():
         replace(BenchPlan(), curves=("nope",))
     with pytest.raises(RotbeamInputError, match="unknown key.*speed"):
         plan_from_dict({"speed": 1})
+
+
+@pytest.mark.parametrize(
+    "spec, key",
+    [({"tolerances": "abc"}, "tolerances"), ({"scenes": [["a", 1]]}, "scenes"),
+     ({"ref_N": ["x", 2, 3]}, "ref_N"), ({"grid": 5}, "grid")],
+)  # fmt: skip
+def test_malformed_plan_lists_name_the_key(spec, key):
+    from rotbeam.bench import plan_from_dict
+    from rotbeam.params import RotbeamInputError
+
+    with pytest.raises(RotbeamInputError, match=f"benchmark.{key} = .*must be"):
+        plan_from_dict(spec)
