@@ -184,6 +184,34 @@ class DiscreteElastica:
         J += s[:, None] * W * (ax + bx)[None, :] - c[:, None] * W * (ay + by)[None, :]
         return J
 
+    def load_torque_rows(self, theta: np.ndarray, lam: np.ndarray, lam_dot: np.ndarray):
+        """`load_torque` at m instants at once: theta (m, n), lam and lam_dot (m,) -> (m, n)."""
+        return self.load_torque(theta.T, np.asarray(lam), np.asarray(lam_dot)).T
+
+    def load_torque_jacobian_rows(
+        self, theta: np.ndarray, lam: np.ndarray, lam_dot: np.ndarray
+    ) -> np.ndarray:
+        """`load_torque_jacobian` at m instants at once: theta (m, n) -> (m, n, n)."""
+        g, ef = self.grid, self.effects
+        c, s = np.cos(theta), np.sin(theta)
+        lam, lam_dot = np.asarray(lam, dtype=float), np.asarray(lam_dot, dtype=float)
+        lam2, ld = (lam * lam)[:, None], lam_dot[:, None]
+        fx, fy = self._loads(c.T, s.T, lam, lam_dot)
+        nx, ny = (g.Q @ fx).T, (g.Q @ fy).T
+        a = np.zeros_like(theta)  # ax + bx
+        b = np.zeros_like(theta)  # ay + by
+        if ef.centrifugal:
+            a = a - lam2 * s
+            if ef.softening:
+                b = b + lam2 * c
+        if ef.euler:
+            a = a + ld * c
+            b = b + ld * s
+        J = s[:, :, None] * g.W[None] * a[:, None, :] - c[:, :, None] * g.W[None] * b[:, None, :]
+        idx = np.arange(self.n)
+        J[:, idx, idx] += c * nx + s * ny
+        return J
+
     # --- static problem ---------------------------------------------------------------------
     def static_residual(self, theta: np.ndarray, lam: float, lam_dot: float) -> np.ndarray:
         return self.grid.K @ theta + self.load_torque(theta, lam, lam_dot)

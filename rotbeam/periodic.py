@@ -27,19 +27,7 @@ import scipy.linalg as sla
 from .elastica import DiscreteElastica
 from .modes import linear_forced_response
 from .params import Dimensionless
-
-
-def fourier_diff_matrix(M: int, period: float) -> np.ndarray:
-    """First-derivative matrix on M equispaced points of a period (M odd: no Nyquist mode)."""
-    if M % 2 == 0:
-        raise ValueError("use an odd number of collocation points")
-    h = 2.0 * math.pi / M
-    j = np.arange(M)
-    diff = j[:, None] - j[None, :]
-    with np.errstate(divide="ignore"):
-        D = 0.5 * (-1.0) ** diff / np.sin(diff * h / 2.0)
-    D[diff == 0] = 0.0
-    return D * (2.0 * math.pi / period)
+from .spectral import fourier_diff_matrix, harmonic_tail, trig_interpolate
 
 
 @dataclass
@@ -68,36 +56,51 @@ class Collocation:
         self.D2 = self.D @ self.D
         self.lam = np.array([dl.lam(t) for t in self.tau])
         self.lam_dot = np.array([dl.lam_dot(t) for t in self.tau])
+        self._cache: tuple | None = None
 
     def _mass_gyro(self, X):
-        c, s = np.cos(X), np.sin(X)  # (M, n)
-        W = self.model.grid.W
-        Mm = c[:, :, None] * W[None] * c[:, None, :] + s[:, :, None] * W[None] * s[:, None, :]
-        Bm = s[:, :, None] * W[None] * c[:, None, :] - c[:, :, None] * W[None] * s[:, None, :]
-        return Mm, Bm
+        """M and B at every instant: W cos(Theta_i - Theta_k), W sin(Theta_i - Theta_k)."""
+        c, s = np.cos(X), np.sin(X)
+        cc, ss = c[:, :, None] * c[:, None, :], s[:, :, None] * s[:, None, :]
+        sc, cs = s[:, :, None] * c[:, None, :], c[:, :, None] * s[:, None, :]
+        W = self.model.grid.W[None]
+        cc += ss
+        sc -= cs
+        return W * cc, W * sc
 
-    def residual(self, X: np.ndarray, jacobian: bool = False):
-        """X: (M, n).  Returns R (M, n) and, if asked, the Jacobian's blocks (`jacobian_blocks`)."""
-        m = self.model
-        M = self.M
+    def _state(self, X: np.ndarray):
+        """Everything the residual and the Jacobian share at X; cached for the last X."""
+        if self._cache is not None and self._cache[0] is X:
+            return self._cache[1]
         V = self.D @ X
         A = self.D2 @ X
         Mm, Bm = self._mass_gyro(X)
         v = V * V
-        if m.effects.coriolis:
+        if self.model.effects.coriolis:
             v = v + 2.0 * self.lam[:, None] * V
+        st = (V, A, Mm, Bm, v)
+        self._cache = (X, st)
+        return st
+
+    def residual(self, X: np.ndarray, jacobian: bool = False):
+        """X: (M, n).  Returns R (M, n) and, if asked, the Jacobian's blocks (`jacobian_blocks`)."""
+        m = self.model
+        V, A, Mm, Bm, v = self._state(X)
         a = A + m.eta * V
         R = np.einsum("jik,jk->ji", Mm, a) + np.einsum("jik,jk->ji", Bm, v) + X @ m.grid.K.T
-        for j in range(M):
-            R[j] += m.load_torque(X[j], self.lam[j], self.lam_dot[j])
+        R += m.load_torque_rows(X, self.lam, self.lam_dot)
         if not jacobian:
             return R
         return R, self.jacobian_blocks(X, V, A, Mm, Bm, v)
 
+    def jacobian_at(self, X: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """The Jacobian blocks at X (reusing the residual's work when X was its last argument)."""
+        return self.jacobian_blocks(X, *self._state(X))
+
     def jacobian_blocks(self, X, V, A, Mm, Bm, v) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """The Jacobian as (M, n, n) block sets: J = diag(L_j) + diag(C_j) D + diag(M_j) D^2."""
         m = self.model
-        n, M = m.n, self.M
+        n = m.n
         a = A + m.eta * V
         Ba = np.einsum("jik,jk->ji", Bm, a)
         Mv = np.einsum("jik,jk->ji", Mm, v)
@@ -105,13 +108,10 @@ class Collocation:
         if m.effects.coriolis:
             dv = dv + 2.0 * self.lam[:, None]
         Cj = m.eta * Mm + Bm * dv[:, None, :]
-        Lj = np.empty((M, n, n))
+        Lj = m.load_torque_jacobian_rows(X, self.lam, self.lam_dot)
+        Lj += m.grid.K[None] + Bm * a[:, None, :] - Mm * v[:, None, :]
         idx = np.arange(n)
-        for j in range(M):
-            loc = m.static_jacobian(X[j], self.lam[j], self.lam_dot[j])
-            loc += Bm[j] * a[j][None, :] - Mm[j] * v[j][None, :]
-            loc[idx, idx] += -Ba[j] + Mv[j]
-            Lj[j] = loc
+        Lj[:, idx, idx] += Mv - Ba
         return Lj, Cj, Mm
 
     def dense_jacobian(self, blocks) -> np.ndarray:
@@ -157,20 +157,23 @@ LINEAR_SOLVERS = ("auto", "dense", "krylov")
 DENSE_MAX = 200  #: "auto": dense LU up to this many unknowns (GMRES 2.5x faster at 663, 6x at 2535)
 
 
-def _newton_step(col: Collocation, blocks, R: np.ndarray, linear: str) -> tuple[np.ndarray, int]:
-    """Solve J step = -R; returns the step and the GMRES iterations spent (0 for dense)."""
+def _newton_step(col: Collocation, blocks, R: np.ndarray, linear: str, inv=None):
+    """Solve J step = -R to relative accuracy 1e-4 (an inexact Newton step: Newton still
+    converges, in fewer Krylov iterations).  Returns the step, the GMRES iterations spent (0 for
+    dense) and the preconditioner used (`inv`, if given, is reused: it is only a preconditioner,
+    and the time-averaged Jacobian changes little between Newton iterations)."""
     shape = R.shape
     size = R.size
     if linear == "dense" or (linear == "auto" and size <= DENSE_MAX):
         J = col.dense_jacobian(blocks)
-        return -sla.solve(J, R.ravel(), check_finite=False).reshape(shape), 0
+        return -sla.solve(J, R.ravel(), check_finite=False).reshape(shape), 0, None
     from scipy.sparse.linalg import LinearOperator, gmres
 
     def matvec(y: np.ndarray) -> np.ndarray:
         return col.jacobian_times(blocks, y.reshape(shape)).ravel()
 
     op = LinearOperator((size, size), matvec)
-    inv = col.averaged_inverse(blocks)
+    inv = inv if inv is not None else col.averaged_inverse(blocks)
     pre = LinearOperator((size, size), lambda r: inv(r.reshape(shape)).ravel())
     count = [0]
 
@@ -178,24 +181,15 @@ def _newton_step(col: Collocation, blocks, R: np.ndarray, linear: str) -> tuple[
         count[0] += 1
 
     b = -R.ravel()
-    x, info = gmres(op, b, rtol=1e-10, atol=0.0, restart=60, maxiter=20, M=pre,
+    x, info = gmres(op, b, rtol=1e-4, atol=0.0, restart=60, maxiter=20, M=pre,
                     callback=tick, callback_type="pr_norm")  # fmt: skip
     if info != 0 or not np.all(np.isfinite(x)):
         if size <= 8 * DENSE_MAX:  # GMRES stalled: fall back to the exact dense solve
             J = col.dense_jacobian(blocks)
-            return -sla.solve(J, R.ravel(), check_finite=False).reshape(shape), count[0]
+            return -sla.solve(J, R.ravel(), check_finite=False).reshape(shape), count[0], None
         if not np.all(np.isfinite(x)):
             raise np.linalg.LinAlgError("GMRES gave a non-finite step")
-    return x.reshape(shape), count[0]
-
-
-def _tail(X: np.ndarray) -> float:
-    C = np.abs(np.fft.rfft(X, axis=0))
-    total = float(np.sqrt(np.sum(C**2)))
-    if total == 0.0:
-        return 0.0
-    k = C.shape[0]
-    return float(np.sqrt(np.sum(C[k // 2 :] ** 2)) / total)
+    return x.reshape(shape), count[0], inv
 
 
 def linear_guess(dl: Dimensionless, N: int, tau: np.ndarray) -> np.ndarray:
@@ -219,7 +213,8 @@ def solve_periodic(
     """
     if linear not in LINEAR_SOLVERS:
         raise ValueError(f"linear must be one of {LINEAR_SOLVERS}, got {linear!r}")
-    gmres_iterations = 0
+    gmres_iterations = first_krylov = 0
+    inv = None
     col = Collocation(dl, N, M)
     X = linear_guess(dl, N, col.tau) if guess is None else np.array(guess, dtype=float)
     R = col.residual(X)
@@ -229,13 +224,16 @@ def solve_periodic(
     msg = "exact" if converged else "no convergence"
     while not converged and it < maxiter:
         it += 1
-        R, blocks = col.residual(X, jacobian=True)
+        blocks = col.jacobian_at(X)
         try:
-            step, krylov = _newton_step(col, blocks, R, linear)
+            step, krylov, inv = _newton_step(col, blocks, R, linear, inv)
         except (np.linalg.LinAlgError, ValueError):
             msg = "singular collocation Jacobian"
             break
         gmres_iterations += krylov
+        if krylov > 2 * max(first_krylov, 5):
+            inv = None  # the preconditioner went stale: rebuild it at the next step
+        first_krylov = first_krylov or krylov
         t = 1.0
         while True:
             Xt = X + t * step
@@ -260,17 +258,10 @@ def solve_periodic(
         iterations=it,
         krylov_iterations=gmres_iterations,
         residual=rn,
-        harmonic_tail=_tail(X),
+        harmonic_tail=harmonic_tail(X),
         M=M,
         message=msg,
     )
-
-
-def trig_interpolate(X: np.ndarray, m: int) -> np.ndarray:
-    """Values at m equispaced instants of the trigonometric interpolant of X (M, ...), M odd."""
-    M = X.shape[0]
-    C = np.fft.rfft(X, axis=0)
-    return np.fft.irfft(C, n=m, axis=0) * (m / M)
 
 
 def _amplitude_continuation(dl: Dimensionless, N: int, M: int, rtol: float, steps: int = 6):

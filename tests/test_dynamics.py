@@ -88,3 +88,36 @@ def test_reference_beam_resonance_near_7_hz():
         vals.append(rms(Grid.build(20).midspan(res.theta)))
     assert 6.5 <= fds[int(np.argmax(vals))] <= 7.5
     assert max(vals) > 4 * vals[0] and max(vals) > 4 * vals[-1]
+
+
+def test_verified_orbit_is_reported_from_the_collocation():
+    """A converged collocated orbit that one period of time stepping confirms is reported as the
+    collocation's own trigonometric samples (not the stepper's), equal to a tight long run."""
+    from rotbeam.spectral import trig_interpolate
+
+    dl = dl_of(5.0, 2.0)
+    num = Numerics(N=20, ss_tol=1e-2, rtol=1e-2, tail_tol=1e-2)
+    a = steady_state(dl, num)
+    assert a.converged and a.periods == 1 and "verified" in a.message
+    samples = trig_interpolate(a.periodic.theta.T, num.samples_per_period).T
+    np.testing.assert_allclose(a.theta, samples, rtol=0, atol=1e-14)
+    tight = steady_state(dl, Numerics(N=20, start="quasistatic", ss_tol=1e-6, rtol=1e-8))
+    assert tight.converged
+    assert rms(a.y_m) == pytest.approx(rms(tight.y_m), rel=1e-5)
+
+
+def test_verification_rejects_an_inaccurate_orbit():
+    """Near resonance (7 Hz) a collocation allowed a coarse harmonic tail (M = 17: 0.14 % off in
+    RMS) fails the one-period check at ss_tol 1e-5; the run goes on time stepping at the tight
+    tolerance and lands on the time-stepped steady state, not on the collocation."""
+    dl = dl_of(5.0, 7.0)
+    coarse = steady_state(dl, Numerics(N=20, integrate=False, tail_tol=0.05))
+    assert coarse.periodic.M == 17
+    checked = steady_state(dl, Numerics(N=20, tail_tol=0.05, ss_tol=1e-5, rtol=1e-7))
+    assert checked.converged and checked.periods > 1 and "verified" not in checked.message
+    ref = steady_state(dl, Numerics(N=20, tail_tol=1e-8, integrate=False))
+    assert ref.periodic.harmonic_tail < 1e-6
+    err_coarse = abs(rms(coarse.y_m) - rms(ref.y_m)) / rms(ref.y_m)
+    err_checked = abs(rms(checked.y_m) - rms(ref.y_m)) / rms(ref.y_m)
+    assert err_coarse > 5e-4  # the check had something to catch
+    assert err_checked < 1e-4

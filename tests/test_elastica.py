@@ -71,3 +71,19 @@ def test_nonrotating_frequency_second_order():
         errs.append(abs(w - 1.8751040687119611**2))
     order = np.log2(np.array(errs[:-1]) / np.array(errs[1:]))
     assert np.all((order > 1.8) & (order < 2.2)), order
+
+
+@pytest.mark.parametrize("softening,euler", [(False, True), (True, True), (True, False)])
+def test_load_torque_rows_equal_the_single_instant_forms(softening, euler):
+    """Batched loads and their Jacobians (collocation, quasi-static) equal the per-instant ones."""
+    m = DiscreteElastica(16, 2.875, 0.1, Effects(softening=softening, euler=euler))
+    rng = np.random.default_rng(3)
+    theta = rng.normal(scale=0.5, size=(7, m.n))
+    lam, lam_dot = rng.normal(size=7), rng.normal(size=7)
+    rows = m.load_torque_rows(theta, lam, lam_dot)
+    jac = m.load_torque_jacobian_rows(theta, lam, lam_dot)
+    for j in range(7):
+        np.testing.assert_allclose(rows[j], m.load_torque(theta[j], lam[j], lam_dot[j]), atol=1e-14)
+        np.testing.assert_allclose(
+            jac[j], m.load_torque_jacobian(theta[j], lam[j], lam_dot[j]), atol=1e-13
+        )
