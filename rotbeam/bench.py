@@ -466,6 +466,8 @@ def plot(runs: pd.DataFrame, refs: pd.DataFrame, plan: BenchPlan, pdf: str, png:
     for ax in axes[len(scenes) + 1 :]:
         ax.axis("off")
     fig.legend(handles, labels, loc="lower center", ncol=3, fontsize=7, bbox_to_anchor=(0.5, 0.0))
+    fig.text(0.99, 0.005, f"errors below {floor:g} (agreement to round-off) are drawn at {floor:g}",
+             ha="right", va="bottom", fontsize=7, color=plotting.GREY)  # fmt: skip
     fig.get_layout_engine().set(rect=(0, 0.12 + 0.1 * (nrows == 1), 1, 0.88 - 0.1 * (nrows == 1)))
     plotting.save(fig, pdf, png)
 
