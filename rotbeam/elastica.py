@@ -184,22 +184,22 @@ class DiscreteElastica:
         J += s[:, None] * W * (ax + bx)[None, :] - c[:, None] * W * (ay + by)[None, :]
         return J
 
-    def load_torque_rows(self, theta: np.ndarray, lam: np.ndarray, lam_dot: np.ndarray):
-        """`load_torque` at m instants at once: theta (m, n), lam and lam_dot (m,) -> (m, n)."""
-        return self.load_torque(theta.T, np.asarray(lam), np.asarray(lam_dot)).T
-
-    def load_torque_jacobian_rows(
-        self, theta: np.ndarray, lam: np.ndarray, lam_dot: np.ndarray
-    ) -> np.ndarray:
-        """`load_torque_jacobian` at m instants at once: theta (m, n) -> (m, n, n)."""
+    def load_torque_rows(
+        self, theta: np.ndarray, lam: np.ndarray, lam_dot: np.ndarray, jacobian: bool = False
+    ):
+        """`load_torque` at m instants at once: theta (m, n), lam and lam_dot (m,) -> (m, n);
+        with `jacobian`, also the m Jacobians `load_torque_jacobian` (m, n, n)."""
         g, ef = self.grid, self.effects
-        c, s = np.cos(theta), np.sin(theta)
         lam, lam_dot = np.asarray(lam, dtype=float), np.asarray(lam_dot, dtype=float)
-        lam2, ld = (lam * lam)[:, None], lam_dot[:, None]
+        c, s = np.cos(theta), np.sin(theta)
         fx, fy = self._loads(c.T, s.T, lam, lam_dot)
         nx, ny = (g.Q @ fx).T, (g.Q @ fy).T
-        a = np.zeros_like(theta)  # ax + bx
-        b = np.zeros_like(theta)  # ay + by
+        torque = s * nx - c * ny
+        if not jacobian:
+            return torque
+        lam2, ld = (lam * lam)[:, None], lam_dot[:, None]
+        a = np.zeros_like(theta)  # the ax + bx and ay + by factors of load_torque_jacobian
+        b = np.zeros_like(theta)
         if ef.centrifugal:
             a = a - lam2 * s
             if ef.softening:
@@ -207,10 +207,11 @@ class DiscreteElastica:
         if ef.euler:
             a = a + ld * c
             b = b + ld * s
-        J = s[:, :, None] * g.W[None] * a[:, None, :] - c[:, :, None] * g.W[None] * b[:, None, :]
+        J = s[:, :, None] * a[:, None, :] - c[:, :, None] * b[:, None, :]
+        J *= g.W[None]
         idx = np.arange(self.n)
         J[:, idx, idx] += c * nx + s * ny
-        return J
+        return torque, J
 
     # --- static problem ---------------------------------------------------------------------
     def static_residual(self, theta: np.ndarray, lam: float, lam_dot: float) -> np.ndarray:

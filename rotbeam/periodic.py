@@ -108,7 +108,7 @@ class Collocation:
         if m.effects.coriolis:
             dv = dv + 2.0 * self.lam[:, None]
         Cj = m.eta * Mm + Bm * dv[:, None, :]
-        Lj = m.load_torque_jacobian_rows(X, self.lam, self.lam_dot)
+        _, Lj = m.load_torque_rows(X, self.lam, self.lam_dot, jacobian=True)
         Lj += m.grid.K[None] + Bm * a[:, None, :] - Mm * v[:, None, :]
         idx = np.arange(n)
         Lj[:, idx, idx] += Mv - Ba

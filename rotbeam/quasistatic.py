@@ -116,44 +116,20 @@ def batched_static(
     iterations contract almost as fast as Newton's and skip most of the cost, the assembly and
     inversion of the m Jacobians.  Larger angles get plain Newton.
     """
-    g, ef = model.grid, model.effects
-    m, n = lam.size, model.n
-    lam2 = (lam * lam)[:, None]
-    ld = lam_dot[:, None]
-    theta = np.zeros((m, n))
-    idx = np.arange(n)
+    K = model.grid.K
+    theta = np.zeros((lam.size, model.n))
     inverse = None
     for _ in range(maxiter):
-        c, s = np.cos(theta), np.sin(theta)
-        x = g.ds / 2 + c @ g.P.T
-        y = s @ g.P.T
-        fx, fy = np.zeros_like(x), np.zeros_like(y)
-        if ef.centrifugal:
-            fx = fx + lam2 * (model.hub_ratio + x)
-            if ef.softening:
-                fy = fy + lam2 * y
-        if ef.euler:
-            fx = fx + ld * y
-            fy = fy - ld * (model.hub_ratio + x)
-        nx, ny = fx @ g.Q.T, fy @ g.Q.T
-        r = theta @ g.K.T + s * nx - c * ny
         if inverse is None:
-            a, b = np.zeros((m, n)), np.zeros((m, n))  # d(F_x), d(F_y) factors
-            if ef.centrifugal:
-                a = a - lam2 * s
-                if ef.softening:
-                    b = b + lam2 * c
-            if ef.euler:
-                a = a + ld * c
-                b = b + ld * s
-            J = s[:, :, None] * a[:, None, :] - c[:, :, None] * b[:, None, :]
-            J *= g.W[None]
-            J += g.K[None]
-            J[:, idx, idx] += c * nx + s * ny
+            torque, J = model.load_torque_rows(theta, lam, lam_dot, jacobian=True)
+            J += K[None]
             try:
                 inverse = np.linalg.inv(J)
             except np.linalg.LinAlgError:
                 return None
+        else:
+            torque = model.load_torque_rows(theta, lam, lam_dot)
+        r = theta @ K.T + torque
         step = -np.einsum("jik,jk->ji", inverse, r)
         theta = theta + step
         if not np.all(np.isfinite(theta)):

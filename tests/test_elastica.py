@@ -80,8 +80,8 @@ def test_load_torque_rows_equal_the_single_instant_forms(softening, euler):
     rng = np.random.default_rng(3)
     theta = rng.normal(scale=0.5, size=(7, m.n))
     lam, lam_dot = rng.normal(size=7), rng.normal(size=7)
-    rows = m.load_torque_rows(theta, lam, lam_dot)
-    jac = m.load_torque_jacobian_rows(theta, lam, lam_dot)
+    rows, jac = m.load_torque_rows(theta, lam, lam_dot, jacobian=True)
+    np.testing.assert_array_equal(m.load_torque_rows(theta, lam, lam_dot), rows)
     for j in range(7):
         np.testing.assert_allclose(rows[j], m.load_torque(theta[j], lam[j], lam_dot[j]), atol=1e-14)
         np.testing.assert_allclose(
