@@ -160,29 +160,8 @@ class DiscreteElastica:
         return s * (Q @ fx) - c * (Q @ fy)
 
     def load_torque_jacobian(self, theta: np.ndarray, lam: float, lam_dot: float) -> np.ndarray:
-        """dL/dTheta, exact."""
-        g = self.grid
-        c, s = np.cos(theta), np.sin(theta)
-        fx, fy = self._loads(c, s, lam, lam_dot)
-        nx, ny = g.Q @ fx, g.Q @ fy
-        J = np.diag(c * nx + s * ny)
-        ef = self.effects
-        W = g.W
-        # d(F_x)/dTheta = P (-lam^2 S + lam_dot C),  d(F_y)/dTheta = P (lam_dot S + sl lam^2 C)
-        ax = np.zeros(self.n)
-        bx = np.zeros(self.n)
-        ay = np.zeros(self.n)
-        by = np.zeros(self.n)
-        if ef.centrifugal:
-            ax = ax - lam * lam * s
-            if ef.softening:
-                by = by + lam * lam * c
-        if ef.euler:
-            bx = bx + lam_dot * c
-            ay = ay + lam_dot * s
-        # S W diag(ax + bx) - C W diag(ay + by)
-        J += s[:, None] * W * (ax + bx)[None, :] - c[:, None] * W * (ay + by)[None, :]
-        return J
+        """dL/dTheta, exact (`load_torque_rows` at one instant)."""
+        return self.load_torque_rows(theta[None], [lam], [lam_dot], jacobian=True)[1][0]
 
     def load_torque_rows(
         self, theta: np.ndarray, lam: np.ndarray, lam_dot: np.ndarray, jacobian: bool = False
@@ -197,8 +176,11 @@ class DiscreteElastica:
         torque = s * nx - c * ny
         if not jacobian:
             return torque
+        # dL/dTheta = diag(C n_x + S n_y) + S W diag(a) - C W diag(b), from
+        # d(F_x)/dTheta = P diag(a) = P (-lam^2 S + lam_dot C) and
+        # d(F_y)/dTheta = P diag(b) = P (lam_dot S + [softening] lam^2 C)
         lam2, ld = (lam * lam)[:, None], lam_dot[:, None]
-        a = np.zeros_like(theta)  # the ax + bx and ay + by factors of load_torque_jacobian
+        a = np.zeros_like(theta)
         b = np.zeros_like(theta)
         if ef.centrifugal:
             a = a - lam2 * s

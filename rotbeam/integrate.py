@@ -260,8 +260,8 @@ def steady_state(
     # threshold suffices, whatever `rtol` asks of a transient (the reported samples are then the
     # collocation's, accurate to its harmonic tail).  Should the check fail, the following
     # periods follow the transient at the tight `rtol` and their samples are reported.
-    on_orbit = periodic is not None and periodic.converged and 0.0 < rho < 1.0
-    check = min(1e-2, num.ss_tol * (1.0 - rho) / (3.0 * rho)) if on_orbit else 0.0
+    from_orbit = periodic is not None and periodic.converged
+    check = min(1e-2, num.ss_tol * (1.0 - rho) / (3.0 * rho)) if from_orbit and 0 < rho < 1 else 0.0
     rtol_first = max(rtol, check)
 
     def atol_for(r: float) -> np.ndarray:
@@ -302,7 +302,7 @@ def steady_state(
 
     # from a converged collocated orbit one period measures its distance to the time-stepped
     # orbit; from any other start the first period's difference may be a lucky crossing
-    min_periods = 1 if periodic is not None and periodic.converged else 2
+    min_periods = 1 if from_orbit else 2
     history: list[float] = []
     window: list[tuple[np.ndarray, np.ndarray]] = []  #: the last rms_periods periods seen
     reuse = False
@@ -362,8 +362,7 @@ def steady_state(
         )
 
     taus, theta = seen_tau, seen_theta
-    verified = status == 0 and k == 1 and periodic is not None and periodic.converged
-    if verified and periodic.harmonic_tail <= num.tail_tol:
+    if status == 0 and k == 1 and from_orbit and periodic.harmonic_tail <= num.tail_tol:
         # the collocated orbit passed: report it (spectrally accurate, exact trigonometric
         # samples) rather than the stepper's samples, whose error is the stepper's tolerance
         taus = period_samples(dl, 0, num.rms_periods, m)
