@@ -304,6 +304,7 @@ def workflow_copy(tmp_path_factory):
     shutil.copy(ROOT / "Snakefile", work)
     shutil.copytree(ROOT / "config", work / "config")
     shutil.copytree(ROOT / "workflow", work / "workflow")
+    shutil.copytree(ROOT / "profiles", work / "profiles")  # the workflow profile
     return work
 
 

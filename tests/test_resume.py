@@ -7,7 +7,6 @@ import hashlib
 import json
 import math
 import os
-import re
 import shutil
 import signal
 import subprocess
@@ -152,6 +151,7 @@ def test_killed_writer_leaves_no_file_at_the_final_path(tmp_path, kind, name, ex
 LINES = ["fig3", "fig4_w10", "cmax1", "cmax10", "cmax100", "cmax787"]
 TARGETS = [f"results/sims/ref/{name}.csv" for name in LINES]
 ENV = dict(os.environ, OPENBLAS_NUM_THREADS="1", PYTHONUNBUFFERED="1")
+JOB_PAUSE = 2.0  # seconds each line sleeps in the interrupt test (see there)
 
 
 def snakemake(work: Path, *args: str, timeout: float = 300) -> subprocess.CompletedProcess:
@@ -209,13 +209,20 @@ def test_interrupted_workflow_reruns_only_unfinished_jobs(tmp_path, interrupt):
     work.mkdir()
     shutil.copy(ROOT / "Snakefile", work)
     shutil.copytree(ROOT / "config", work / "config")
-    # a finer grid than the quick config's N = 12 so that a line takes a few seconds: on an idle
-    # machine the quick lines finish faster than the signal can be aimed at one of them
-    quick = work / "config" / "quick.yaml"
-    text = quick.read_text()
-    assert "\n  N: 12\n" in text
-    quick.write_text(text.replace("\n  N: 12\n", "\n  N: 30\n", 1))
     shutil.copytree(ROOT / "workflow", work / "workflow")
+    shutil.copytree(ROOT / "profiles", work / "profiles")  # the workflow profile
+    # Each line of this copy first sleeps JOB_PAUSE seconds, so that the signal can be aimed at a
+    # moment when a job is running and snakemake's main thread is idle.  Aiming matters for
+    # SIGTERM: snakemake's handler (JobScheduler.exit_gracefully, 9.27) takes the scheduler's
+    # non-reentrant lock, so a SIGTERM that lands while the main thread holds that lock (when a
+    # job has just finished or is being started) deadlocks snakemake for good.  A quick line takes
+    # about a second, so an unaimed signal hits that window often (CI, 2026-11-29: no exit in
+    # 300 s).  A user's `kill` can hit it too; that is snakemake's to fix, not the workflow's.
+    script = work / "workflow" / "scripts" / "sweep_line.py"
+    code = script.read_text()
+    anchor = "from rotbeam.io import write_csv\n"
+    assert anchor in code
+    script.write_text(code.replace(anchor, f"import time\n\ntime.sleep({JOB_PAUSE})\n{anchor}", 1))
     sims = work / "results" / "sims" / "ref"
 
     # first run: interrupt it once one line is finished and recorded.  One core, so that the
@@ -226,20 +233,30 @@ def test_interrupted_workflow_reruns_only_unfinished_jobs(tmp_path, interrupt):
     with open(log, "w") as out:
         p = subprocess.Popen(
             [*cmd, "--configfile", "config/quick.yaml"],
-            cwd=work, env=ENV, stdout=out, stderr=subprocess.STDOUT, start_new_session=True,
-            preexec_fn=default_sigint,
+            cwd=work, env=dict(ENV, PYTHONFAULTHANDLER="1"), stdout=out,
+            stderr=subprocess.STDOUT, start_new_session=True, preexec_fn=default_sigint,
         )  # fmt: skip
+        # wait until one line is done and the next one has started, then a little longer, so
+        # that the signal lands inside that next job's pause
         t0 = time.monotonic()
         while p.poll() is None and time.monotonic() - t0 < 180:
-            if re.search(r"\d+ of \d+ steps", log.read_text()) and list(sims.glob("*.csv")):
+            text = log.read_text()
+            if f"1 of {len(TARGETS)} steps" in text and text.count("rule sweep_line:") >= 2:
                 break
             time.sleep(0.05)
+        time.sleep(JOB_PAUSE / 4)
         assert p.poll() is None, "the run finished before it could be interrupted"
         if interrupt == "SIGTERM":
             p.send_signal(signal.SIGTERM)
         else:
             os.killpg(p.pid, signal.SIGINT)
-        assert p.wait(300) != 0
+        try:
+            code = p.wait(120)
+        except subprocess.TimeoutExpired:
+            p.send_signal(signal.SIGABRT)  # faulthandler writes every thread's stack to the log
+            p.wait(30)
+            pytest.fail(f"snakemake did not stop after {interrupt}:\n{log.read_text()[-6000:]}")
+        assert code != 0
     done = sorted(sims.glob("*.csv"))
     missing = [t for t in TARGETS if not (work / t).exists()]
     assert done and missing, (done, log.read_text()[-3000:])

@@ -102,6 +102,7 @@ def workflow_copy(tmp_path_factory):
     work = tmp_path_factory.mktemp("swf")
     shutil.copytree(ROOT / "config", work / "config")
     shutil.copytree(ROOT / "workflow", work / "workflow")
+    shutil.copytree(ROOT / "profiles", work / "profiles")  # the workflow profile
     text = (ROOT / "Snakefile").read_text()
     if "surrogate.smk" not in text:
         text = text.replace(

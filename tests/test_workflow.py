@@ -43,6 +43,7 @@ def quick_run(tmp_path_factory):
     shutil.copy(ROOT / "Snakefile", work)
     shutil.copytree(ROOT / "config", work / "config")
     shutil.copytree(ROOT / "workflow", work / "workflow")
+    shutil.copytree(ROOT / "profiles", work / "profiles")  # the workflow profile
     p = subprocess.run(
         [*SNAKEMAKE, "--cores", "2", "--configfile", "config/quick.yaml"],
         cwd=work,
@@ -51,6 +52,8 @@ def quick_run(tmp_path_factory):
         timeout=900,
     )
     assert p.returncode == 0, p.stderr[-3000:]
+    # the workflow profile is read (greedy job selection: see profiles/default/config.yaml)
+    assert "Using workflow specific profile profiles/default" in p.stderr, p.stderr[:3000]
     return work
 
 
