@@ -69,6 +69,11 @@ def build_parser() -> argparse.ArgumentParser:
     s.add_argument("--json", action="store_true", help="print one JSON object")
     s.add_argument("--out", help="write the time series to this CSV or Parquet file")
     s.add_argument("--progress", action="store_true", help="report progress on stderr")
+    s.add_argument("--threshold", type=_finite, default=0.10,
+                   help="Delta RMS below which quasi-static is good enough, in (0, 1) "
+                        "(default 0.10, the paper's)")  # fmt: skip
+    s.add_argument("--plot", help="draw y_m, dynamic against quasi-static, with the verdict and "
+                   "the cost, to this .png, .pdf or .svg file")  # fmt: skip
 
     b = sub.add_parser("bench", help="work-precision benchmark (error against wall time)")
     b.add_argument("--quick", action="store_true", help="the small plan (2 scenes, 2 tolerances)")
@@ -152,11 +157,20 @@ def _write_series(path: str, series: dict[str, np.ndarray]) -> None:
 
 
 def cmd_simulate(args: argparse.Namespace) -> int:
+    from .criterion import check_threshold
     from .scene import simulate
+    from .verdict import PLOT_SUFFIXES, judge, plot_verdict
 
     scene = _scene_from_args(args)
     if args.out and Path(args.out).suffix not in (".csv", ".parquet"):
         raise RotbeamInputError(f"--out must end in .csv or .parquet, got {args.out!r}")
+    if args.plot and Path(args.plot).suffix not in PLOT_SUFFIXES:
+        allowed = ", ".join(PLOT_SUFFIXES)
+        raise RotbeamInputError(f"--plot must end in {allowed}, got {args.plot!r}")
+    try:
+        check_threshold(args.threshold)
+    except RotbeamInputError as exc:
+        raise RotbeamInputError(f"argument --threshold: {exc}") from None
 
     def progress(k: int, bound: float) -> None:
         print(f"\rperiod {k}: transient bound {bound:.2e}", end="", file=sys.stderr, flush=True)
@@ -164,15 +178,20 @@ def cmd_simulate(args: argparse.Namespace) -> int:
     res = simulate(scene, progress=progress if args.progress else None)
     if args.progress:
         print(file=sys.stderr)
-    summary = res.summary()
+    verdict = judge(res, args.threshold)
+    summary = res.summary() | verdict.as_dict()
     if args.out:
         _write_series(args.out, res.time_series())
+    if args.plot:
+        plot_verdict(res, verdict, args.plot)
     if args.json:
         print(json.dumps(summary, default=float))
     else:
-        for key in ("rms_dynamic", "rms_quasistatic", "delta_rms", "f_n_hz", "C_max", "E_max"):
+        for key in ("rms_dynamic", "rms_quasistatic", "delta_rms", "f_n_hz", "f0_hz", "C_max",
+                    "E_max"):  # fmt: skip
             print(f"{key:16s} {summary[key]:.6g}")
         print(f"{'converged':16s} {summary['converged']} ({summary['message']})")
+        print(f"{'verdict':16s} {verdict.text}")
         print(f"{'seconds':16s} {summary['seconds']:.3g}")
     return 0 if res.converged else 1
 

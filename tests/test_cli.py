@@ -70,3 +70,33 @@ def test_modes_dimensionless_matches_beta1():
     w = json.loads(p.stdout)["frequencies_dimensionless"]
     assert w[0] == pytest.approx(1.8751040687**2, rel=1e-4)
     assert w[1] == pytest.approx(4.6940911330**2, rel=1e-3)
+
+
+# --- the verdict (rotbeam.verdict): --threshold and --plot -----------------------------------
+
+
+def test_cli_verdict_json_and_plot(tmp_path):
+    plot = tmp_path / "answer.png"
+    p = run("simulate", "--omega0", "5", "--fd", "7", "--N", "16", "--json", "--plot", str(plot))
+    assert p.returncode == 0, p.stderr
+    d = json.loads(p.stdout)
+    assert d["quasistatic_ok"] is False and d["threshold"] == 0.10
+    assert d["delta_rms"] >= 0.10 and "inertia matters" in d["verdict"]
+    assert plot.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and plot.stat().st_size > 20_000
+    assert not list(tmp_path.glob(".*part*"))  # written through a temporary name
+
+
+@pytest.mark.parametrize(
+    "flags, words",
+    [
+        (["--threshold", "1.5"], ["--threshold", "(0, 1)", "1.5"]),
+        (["--threshold", "0"], ["--threshold", "(0, 1)"]),
+        (["--threshold", "nan"], ["--threshold", "finite"]),
+        (["--plot", "answer.txt"], ["--plot", ".png", "answer.txt"]),
+    ],
+)
+def test_cli_bad_threshold_or_plot_is_one_line_exit_2(flags, words):
+    p = run("simulate", "--omega0", "5", "--fd", "2", *flags)
+    assert p.returncode == 2 and "Traceback" not in p.stderr
+    assert len(p.stderr.strip().splitlines()) == 1
+    assert all(w in p.stderr for w in words), p.stderr
