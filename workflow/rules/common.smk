@@ -1,6 +1,7 @@
 import sys
 from pathlib import Path
 
+from snakemake.exceptions import WorkflowError
 from snakemake.utils import validate
 
 import rotbeam
@@ -36,6 +37,14 @@ wildcard_constraints:
     line="[A-Za-z0-9_.+-]+",
     name="[A-Za-z0-9_.+-]+",
 
+
+# Threads of the work-precision benchmark: every core of a local run, so that nothing runs beside
+# its timings.  With a cluster executor there is no --cores and `workflow.cores` raises; the job
+# then asks for two cores of its node (the timings are serial, the second keeps the node quiet).
+try:
+    BENCHMARK_THREADS = workflow.cores
+except WorkflowError:
+    BENCHMARK_THREADS = 2
 
 PKG = Path(rotbeam.__file__).parent
 # cheap downstream rules rerun when the package code they use changes

@@ -26,7 +26,7 @@ rule benchmark_accuracy:
         "benchmarks/benchmark_accuracy.tsv"
     conda:
         "../envs/rotbeam.yaml"
-    threads: workflow.cores
+    threads: BENCHMARK_THREADS
     params:
         plan=config.get("benchmark", {}),
     script:
