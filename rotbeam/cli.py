@@ -1,5 +1,5 @@
-"""Command line: `rotbeam simulate` (one scene), `rotbeam modes` (linearised frequencies) and
-`rotbeam bench` (work-precision benchmark).
+"""Command line: `rotbeam simulate` (one scene, with the verdict), `rotbeam critical` (f_d* at one
+speed), `rotbeam modes` (linearised frequencies) and `rotbeam bench` (work-precision benchmark).
 
 Bad input gives one line on stderr and exit status 2, never a traceback.
 """
@@ -57,16 +57,7 @@ def build_parser() -> argparse.ArgumentParser:
     sub = p.add_subparsers(dest="command", required=True, parser_class=_Parser)
 
     s = sub.add_parser("simulate", help="dynamic and quasi-static response of one scene")
-    s.add_argument("--scene", help="YAML scene file (sections beam, drive, effects, numerics)")
-    s.add_argument("--omega0", type=_finite, help="mean angular velocity Omega_0 [rad/s]")
-    s.add_argument("--fd", type=_finite, help="drive frequency f_d [Hz]")
-    s.add_argument("--amplitude", type=_finite, help="velocity amplitude a [rad/s] (default 1)")
-    s.add_argument("--N", type=_int, help="grid intervals (default 40)")
-    s.add_argument("--R", type=_finite, help="axis to undeformed tip [m] (default 0.155)")
-    s.add_argument("--method", help="Radau (default), BDF, LSODA or TRBDF2")
-    s.add_argument("--rtol", type=_finite, help="time-stepper relative tolerance")
-    s.add_argument("--effects", help="comma list of effects switched on, e.g. centrifugal,euler")
-    s.add_argument("--json", action="store_true", help="print one JSON object")
+    _scene_flags(s, drive_frequency=True)
     s.add_argument("--out", help="write the time series to this CSV or Parquet file")
     s.add_argument("--progress", action="store_true", help="report progress on stderr")
     s.add_argument("--threshold", type=_finite, default=0.10,
@@ -74,6 +65,14 @@ def build_parser() -> argparse.ArgumentParser:
                         "(default 0.10, the paper's)")  # fmt: skip
     s.add_argument("--plot", help="draw y_m, dynamic against quasi-static, with the verdict and "
                    "the cost, to this .png, .pdf or .svg file")  # fmt: skip
+
+    c = sub.add_parser("critical", help="f_d*: the drive frequency where Delta RMS reaches the "
+                       "threshold at one speed (root finding on the full model)")  # fmt: skip
+    _scene_flags(c, drive_frequency=False)
+    c.add_argument("--threshold", type=_finite, default=0.10,
+                   help="Delta RMS at the boundary, in (0, 1) (default 0.10)")  # fmt: skip
+    c.add_argument("--ftol", type=_finite, default=1e-3,
+                   help="relative tolerance on f_d*, in [1e-8, 0.1] (default 1e-3)")  # fmt: skip
 
     b = sub.add_parser("bench", help="work-precision benchmark (error against wall time)")
     b.add_argument("--quick", action="store_true", help="the small plan (2 scenes, 2 tolerances)")
@@ -95,6 +94,21 @@ def build_parser() -> argparse.ArgumentParser:
     )
     m.add_argument("--json", action="store_true")
     return p
+
+
+def _scene_flags(p: argparse.ArgumentParser, drive_frequency: bool) -> None:
+    """The flags that set a scene (shared by `simulate` and `critical`)."""
+    p.add_argument("--scene", help="YAML scene file (sections beam, drive, effects, numerics)")
+    p.add_argument("--omega0", type=_finite, help="mean angular velocity Omega_0 [rad/s]")
+    if drive_frequency:
+        p.add_argument("--fd", type=_finite, help="drive frequency f_d [Hz]")
+    p.add_argument("--amplitude", type=_finite, help="velocity amplitude a [rad/s] (default 1)")
+    p.add_argument("--N", type=_int, help="grid intervals (default 40)")
+    p.add_argument("--R", type=_finite, help="axis to undeformed tip [m] (default 0.155)")
+    p.add_argument("--method", help="Radau (default), BDF, LSODA or TRBDF2")
+    p.add_argument("--rtol", type=_finite, help="time-stepper relative tolerance")
+    p.add_argument("--effects", help="comma list of effects switched on, e.g. centrifugal,euler")
+    p.add_argument("--json", action="store_true", help="print one JSON object")
 
 
 def _scene_from_args(args: argparse.Namespace):
@@ -196,6 +210,37 @@ def cmd_simulate(args: argparse.Namespace) -> int:
     return 0 if res.converged else 1
 
 
+def cmd_critical(args: argparse.Namespace) -> int:
+    from .criterion import check_threshold
+    from .verdict import critical_frequency
+
+    try:
+        check_threshold(args.threshold)
+    except RotbeamInputError as exc:
+        raise RotbeamInputError(f"argument --threshold: {exc}") from None
+    if not 1e-8 <= args.ftol <= 0.1:
+        raise RotbeamInputError(f"argument --ftol: must be in [1e-8, 0.1], got {args.ftol!r}")
+    args.fd = (
+        1.0  # a placeholder the scene needs (a scene file's f_d is ignored): the search sets f_d
+    )
+    scene = _scene_from_args(args)
+    res = critical_frequency(scene.beam, scene.drive.omega0, args.threshold, scene.drive.amplitude,
+                             scene.effects, scene.numerics, args.ftol)  # fmt: skip
+    out = res.as_dict() | {"omega0": scene.drive.omega0, "amplitude": scene.drive.amplitude,
+                           "N": scene.numerics.N}  # fmt: skip
+    if args.json:
+        print(json.dumps(out, default=float))
+    else:
+        print(f"{'f_d_star_hz':16s} {res.f_d_star:.6g}")
+        print(f"{'c = f_d*/f_0':16s} {res.f_d_star / res.f0_hz:.4g}")
+        print(f"{'f0_hz':16s} {res.f0_hz:.6g}")
+        print(f"{'estimate_hz':16s} {res.estimate_hz:.6g} (App. E, c_0 f_0)")
+        print(f"{'found':16s} {res.found} ({res.message})")
+        print(f"{'evaluations':16s} {len(res.visited)}")
+        print(f"{'seconds':16s} {res.seconds:.3g}")
+    return 0 if res.found else 1
+
+
 def _check_rotation(flag: str, value: float, c: float, formula: str) -> None:
     """The centrifugal number C = G Omega^2 = lambda^2 (R_o/L + 1) within the model's range."""
     if not c <= C_MAX_LIMIT:
@@ -274,6 +319,8 @@ def main(argv: list[str] | None = None) -> int:
             return cmd_simulate(args)
         if args.command == "bench":
             return cmd_bench(args)
+        if args.command == "critical":
+            return cmd_critical(args)
         return cmd_modes(args)
     except RotbeamInputError as exc:
         print(f"rotbeam: error: {exc}", file=sys.stderr)

@@ -17,13 +17,15 @@ above c_0 (README, "Results"); the estimate is a guide, the verdict comes from t
 from __future__ import annotations
 
 import math
+import time
 from dataclasses import dataclass
 from pathlib import Path
 
 from .criterion import check_threshold
-from .params import RotbeamInputError
+from .integrate import Numerics
+from .params import Beam, Drive, Effects, RotbeamInputError
 from .plotting import DYN, QS, figure, save
-from .scene import SceneResult
+from .scene import Scene, SceneResult, simulate
 from .secondorder import c0_root
 from .sweeps import resonance_frequency_hz
 
@@ -110,3 +112,124 @@ def plot_verdict(result: SceneResult, verdict: Verdict, path: str | Path) -> Non
     cost += ", Richardson-extrapolated RMS)" if result.extrapolation else ")"
     ax.legend(title=cost, loc="upper center", bbox_to_anchor=(0.5, -0.2), ncol=2)
     save(fig, path)
+
+
+def _lag_ratio(zeta: float, threshold: float) -> float:
+    """Where the canonical oscillator's response falls below its static one by the threshold:
+    sqrt((1 - c^2)^2 + (2 zeta c)^2) = 1 + threshold, i.e. c^4 - 2 B c^2 + 1 - (1 + t)^2 = 0 with
+    B = 1 - 2 zeta^2 (the |.| branch of App. E's Delta RMS, the one overdamped beams cross)."""
+    B = 1.0 - 2.0 * zeta * zeta
+    C = 1.0 - (1.0 + threshold) ** 2  # < 0: one positive root in c^2
+    return (
+        math.sqrt(B + math.sqrt(B * B - C))
+        if B >= 0
+        else math.sqrt(-C / (-B + math.sqrt(B * B - C)))
+    )
+
+
+@dataclass(frozen=True)
+class Critical:
+    """The drive frequency f_d* at which Delta RMS reaches the threshold, at one rotation speed."""
+
+    found: bool
+    f_d_star: float  #: Hz; NaN unless found
+    threshold: float
+    f0_hz: float
+    estimate_hz: float  #: App. E's linear estimate c_0 f_0 (NaN where no root exists)
+    visited: list[tuple[float, float]]  #: (f_d, Delta RMS) of every full-model run, in order
+    seconds: float
+    message: str
+
+    def as_dict(self) -> dict[str, object]:
+        out = {k: getattr(self, k) for k in ("found", "f_d_star", "threshold", "f0_hz",
+                                             "estimate_hz", "seconds", "message")}  # fmt: skip
+        out["c"] = self.f_d_star / self.f0_hz
+        out["evaluations"] = len(self.visited)
+        out["visited"] = [list(v) for v in self.visited]
+        return out
+
+
+#: Bracket search: steps of this factor in f_d from the linear estimate, at most MAX_STEPS each way.
+BRACKET_FACTOR = 1.25
+MAX_STEPS = 12
+
+
+def critical_frequency(
+    beam: Beam,
+    omega0: float,
+    threshold: float = 0.10,
+    amplitude: float = 1.0,
+    effects: Effects | None = None,
+    numerics: Numerics | None = None,
+    rtol: float = 1e-3,
+) -> Critical:
+    """f_d* [Hz] of the full model at one speed, by root finding instead of a dense scan (the
+    full-model twin of `surrogate.critical_frequency`, same argument order).
+
+    Starts at App. E's linear estimate c_0 f_0 (within a few per cent on the reference beam),
+    steps by BRACKET_FACTOR until Delta RMS - threshold changes sign, then runs brentq to a
+    relative tolerance `rtol` in f_d.  This is the crossing nearest the estimate; it is the
+    paper's first crossing where Delta RMS rises monotonically below it, as on every line of the
+    full run.  A run without a steady state ends the search with found = False and its reason.
+    """
+    from scipy.optimize import brentq
+
+    th = check_threshold(threshold)
+    effects = effects or Effects()
+    numerics = numerics or Numerics()
+    if not (isinstance(rtol, float) and 1e-8 <= rtol <= 0.1):
+        raise RotbeamInputError(f"rtol must be in [1e-8, 0.1], got {rtol!r}")
+    t0 = time.perf_counter()
+    f0 = resonance_frequency_hz(beam, omega0, amplitude)
+    zeta = beam.derived()["zeta"]
+    try:
+        estimate = c0_root(zeta, th) * f0
+        start = estimate
+    except RotbeamInputError:  # too damped to exceed the static response: start where it lags
+        estimate = math.nan
+        start = _lag_ratio(zeta, th) * f0
+    visited: list[tuple[float, float]] = []
+    seen: dict[float, float] = {}  # brentq evaluates the bracket ends again: reuse them
+    guess = [None]
+
+    class NoSteadyState(Exception):
+        pass
+
+    def excess(f_d: float) -> float:
+        if f_d in seen:
+            return seen[f_d] - th
+        res = simulate(Scene(beam, Drive(omega0, amplitude, f_d), effects, numerics),
+                       guess=guess[0])  # fmt: skip
+        if not res.converged or not math.isfinite(res.delta_rms):
+            raise NoSteadyState(f"no steady state at f_d = {f_d:.4g} Hz: {res.dynamic.message}")
+        periodic = res.dynamic.periodic
+        guess[0] = periodic.theta.T if periodic is not None and periodic.converged else None
+        visited.append((f_d, res.delta_rms))
+        seen[f_d] = res.delta_rms
+        return res.delta_rms - th
+
+    def done(found: bool, f: float, msg: str) -> Critical:
+        return Critical(found, f, th, f0, estimate, visited, time.perf_counter() - t0, msg)
+
+    try:
+        lo = hi = start
+        g = excess(start)
+        step = BRACKET_FACTOR if g < 0 else 1.0 / BRACKET_FACTOR
+        for _ in range(MAX_STEPS):
+            if g == 0.0:
+                return done(True, lo, "Delta RMS equals the threshold at the start")
+            nxt = (hi if step > 1 else lo) * step
+            g_new = excess(nxt)
+            if (g_new > 0) != (g > 0) or g_new == 0.0:
+                lo, hi = sorted((nxt, nxt / step))
+                break
+            lo = hi = nxt
+            g = g_new
+        else:
+            side = "below" if step > 1 else "above"
+            return done(False, math.nan, f"Delta RMS stays {side} {th:g} from {start:.4g} Hz to "
+                        f"{lo:.4g} Hz ({MAX_STEPS} steps of x{step:.3g})")  # fmt: skip
+        root = brentq(excess, lo, hi, rtol=rtol, xtol=1e-12 * hi)
+    except NoSteadyState as exc:
+        return done(False, math.nan, str(exc))
+    return done(True, float(root), f"brentq in [{lo:.4g}, {hi:.4g}] Hz to rtol {rtol:g}")

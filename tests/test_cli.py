@@ -100,3 +100,32 @@ def test_cli_bad_threshold_or_plot_is_one_line_exit_2(flags, words):
     assert p.returncode == 2 and "Traceback" not in p.stderr
     assert len(p.stderr.strip().splitlines()) == 1
     assert all(w in p.stderr for w in words), p.stderr
+
+
+def test_cli_critical_json():
+    p = run("critical", "--omega0", "5", "--N", "16", "--json")
+    assert p.returncode == 0, p.stderr
+    d = json.loads(p.stdout)
+    assert d["found"] and d["threshold"] == 0.10 and d["evaluations"] == len(d["visited"]) <= 12
+    # the f_d* of the reference beam at 5 rad/s: c = f_d*/f_0 between App. E's c_0 (0.316) -2 %
+    # and the full run's fitted c (0.323) +2 %
+    assert 0.31 < d["c"] < 0.33 and d["f_d_star"] == pytest.approx(d["c"] * d["f0_hz"])
+    f, delta = zip(*d["visited"], strict=True)
+    assert min(delta) < 0.10 < max(delta)  # the root was bracketed by full-model runs
+
+
+@pytest.mark.parametrize(
+    "flags, words",
+    [
+        (["--omega0", "5", "--threshold", "1"], ["--threshold", "(0, 1)"]),
+        (["--omega0", "5", "--ftol", "0.5"], ["--ftol", "[1e-8, 0.1]", "0.5"]),
+        (["--omega0", "5", "--fd", "2"], ["unrecognized arguments: --fd 2"]),
+        ([], ["drive.omega0", "missing", "--omega0"]),
+        (["--omega0", "5", "--N", "2"], ["numerics.N", ">= 3"]),
+    ],
+)
+def test_cli_critical_bad_flags_are_one_line_exit_2(flags, words):
+    p = run("critical", *flags)
+    assert p.returncode == 2 and "Traceback" not in p.stderr
+    assert len(p.stderr.strip().splitlines()) == 1
+    assert all(w in p.stderr for w in words), p.stderr

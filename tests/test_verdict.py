@@ -1,16 +1,21 @@
 """The engineer's answer for one scene (rotbeam.verdict, `rotbeam simulate --threshold --plot`):
 the full model's verdict against an independent route (App. E's linear second-order estimate of
-the boundary), the flip at the threshold, no verdict without a steady state.  The CLI's
-`--threshold` and `--plot` are tested in test_cli.py."""
+the boundary), the flip at the threshold, no verdict without a steady state; f_d* by root finding
+against the root of a dense scan.  The CLI (`--threshold`, `--plot`, `rotbeam critical`) is
+tested in test_cli.py."""
 
 import math
 
+import numpy as np
 import pytest
 
+from rotbeam.criterion import critical_from_scan
 from rotbeam.integrate import Numerics
 from rotbeam.params import Beam, Drive, Effects
 from rotbeam.scene import Scene, simulate
-from rotbeam.verdict import judge
+from rotbeam.secondorder import delta_rms_canonical
+from rotbeam.sweeps import scan_line
+from rotbeam.verdict import _lag_ratio, critical_frequency, judge
 
 NUM = Numerics(N=20)
 
@@ -60,3 +65,48 @@ def test_overdamped_beam_has_no_linear_estimate_but_a_verdict():
     assert math.isnan(v.c0) and math.isnan(v.fd_star_estimate_hz)
     assert "no linear estimate" in v.text
     assert v.quasistatic_ok is True  # 2 Hz against f_n = 14.9 kHz
+
+
+# --- f_d* by root finding (rotbeam critical) ------------------------------------------------------
+
+
+@pytest.mark.parametrize("omega0", [5.0, 50.0])
+def test_critical_frequency_equals_the_root_of_a_dense_scan(omega0):
+    """Root finding on the full model against the workflow's route: a 21-point scan and the root
+    of its PCHIP interpolant (criterion.critical_from_scan)."""
+    crit = critical_frequency(Beam(), omega0, numerics=NUM, rtol=1e-5)
+    assert crit.found and len(crit.visited) <= 12, crit
+    df = scan_line(Beam(), omega0, crit.f0_hz * np.linspace(0.2, 0.45, 21), numerics=NUM)
+    scan = critical_from_scan(df["f_d"], df["delta_rms"], 0.10)
+    assert scan["found"]
+    assert crit.f_d_star == pytest.approx(scan["f_d_root"], rel=1e-3)
+    # the linear estimate started it close: App. E within 2 % of the full model
+    assert crit.estimate_hz == pytest.approx(crit.f_d_star, rel=0.02)
+
+
+def test_lag_ratio_solves_the_overdamped_branch():
+    """Where App. E's oscillator lags: 1 - sqrt((1 - c^2)^2 + (2 zeta c)^2) = -threshold."""
+    for zeta in (0.5, 0.8, 2.0, 35.5):
+        for th in (0.05, 0.1, 0.3):
+            assert delta_rms_canonical(_lag_ratio(zeta, th), zeta) == pytest.approx(-th, abs=1e-12)
+
+
+def test_overdamped_critical_frequency():
+    """The tiny Fig. 7 beam (zeta 35.5) has no App. E root; its boundary is where the dynamic
+    response lags the static one by the threshold, and the full model brackets it there."""
+    ref = Beam()
+    h = 0.01 * 1e-4
+    tiny = Beam(L=1e-4, h=h, b=ref.b / ref.h * h, E=1e9)
+    crit = critical_frequency(tiny, 5.0, numerics=NUM)
+    assert crit.found and math.isnan(crit.estimate_hz)
+    assert crit.f_d_star == pytest.approx(_lag_ratio(tiny.derived()["zeta"], 0.1) * crit.f0_hz,
+                                          rel=0.05)  # fmt: skip
+    below = judge(simulate(scene(5.0, 0.8 * crit.f_d_star, tiny)))
+    above = judge(simulate(scene(5.0, 1.25 * crit.f_d_star, tiny)))
+    assert below.quasistatic_ok is True and above.quasistatic_ok is False
+
+
+def test_critical_frequency_without_a_steady_state_says_so():
+    crit = critical_frequency(Beam(gamma=0.0), 5.0, numerics=NUM)
+    assert not crit.found and math.isnan(crit.f_d_star)
+    assert crit.message.startswith("no steady state")
