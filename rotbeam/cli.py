@@ -234,7 +234,7 @@ def cmd_critical(args: argparse.Namespace) -> int:
         print(f"{'f_d_star_hz':16s} {res.f_d_star:.6g}")
         print(f"{'c = f_d*/f_0':16s} {res.f_d_star / res.f0_hz:.4g}")
         print(f"{'f0_hz':16s} {res.f0_hz:.6g}")
-        print(f"{'estimate_hz':16s} {res.estimate_hz:.6g} (App. E, c_0 f_0)")
+        print(f"{'estimate_hz':16s} {res.estimate_hz:.6g} (linear, where the search started)")
         print(f"{'found':16s} {res.found} ({res.message})")
         print(f"{'evaluations':16s} {len(res.visited)}")
         print(f"{'seconds':16s} {res.seconds:.3g}")

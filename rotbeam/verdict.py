@@ -12,6 +12,12 @@ f_0 the first in-plane frequency of the linearised beam at the maximal speed Ome
 premise of Eq. Southwell) and c_0 the first root of the canonical damped oscillator's Delta RMS
 (App. E, `secondorder.c0_root`).  On the reference beam the full model's fitted c is 2-3 %
 above c_0 (README, "Results"); the estimate is a guide, the verdict comes from the simulation.
+A beam too damped for that root (its response never exceeds the static one by the threshold)
+crosses on the other branch of |Delta RMS|, where the response lags the static one by the
+threshold (`_lag_ratio`); the estimate then comes from there.
+
+`critical_frequency` answers the other way round: f_d* of the full model at one speed, by root
+finding started at that estimate (the CLI's `rotbeam critical`).
 """
 
 from __future__ import annotations
@@ -40,7 +46,7 @@ class Verdict:
     quasistatic_ok: bool | None
     f0_hz: float  #: first in-plane frequency at Omega_0 + a (linearised model)
     c0: float  #: App. E ratio f_d* / f_0 at the beam's zeta (NaN where no root exists)
-    fd_star_estimate_hz: float  #: c0 * f0 (NaN where no root exists)
+    fd_star_estimate_hz: float  #: c0 f0, or the lag-branch estimate where c0 does not exist
     text: str  #: one line for a reader
 
     def as_dict(self) -> dict[str, float | bool | str | None]:
@@ -59,14 +65,8 @@ def judge(result: SceneResult, threshold: float = 0.10) -> Verdict:
     th = check_threshold(threshold)
     beam, drive = result.scene.beam, result.scene.drive
     f0 = resonance_frequency_hz(beam, drive.omega0, drive.amplitude)
-    zeta = beam.derived()["zeta"]
-    try:
-        c0 = c0_root(zeta, th)
-        estimate = f"linear estimate f_d* = c_0 f_0 = {c0 * f0:.3g} Hz"
-    except RotbeamInputError:  # too damped: the canonical oscillator never reaches the threshold
-        c0 = math.nan
-        estimate = f"no linear estimate of f_d*: at zeta = {zeta:.3g} Delta RMS never reaches it"
-    where = f"f_d / f_0 = {drive.f_d / f0:.3g}; {estimate}"
+    c0, ratio, branch = linear_estimate(beam.derived()["zeta"], th)
+    where = f"f_d / f_0 = {drive.f_d / f0:.3g}; linear estimate f_d* = {ratio * f0:.3g} Hz{branch}"
     d = result.delta_rms
     if not result.converged or not math.isfinite(d):
         ok = None
@@ -77,7 +77,16 @@ def judge(result: SceneResult, threshold: float = 0.10) -> Verdict:
     else:
         ok = False
         text = f"inertia matters: Delta RMS {d:.3g} >= {th:g}, use the dynamic model ({where})"
-    return Verdict(th, d, ok, f0, c0, c0 * f0, text)
+    return Verdict(th, d, ok, f0, c0, ratio * f0, text)
+
+
+def linear_estimate(zeta: float, threshold: float) -> tuple[float, float, str]:
+    """(App. E's c_0 or NaN, the ratio f_d*/f_0 to use, a note naming the branch if not c_0)."""
+    try:
+        c0 = c0_root(zeta, threshold)
+        return c0, c0, " = c_0 f_0"
+    except RotbeamInputError:  # too damped to exceed the static response: where it lags it
+        return math.nan, _lag_ratio(zeta, threshold), f", where the response lags (zeta {zeta:.3g})"
 
 
 #: File types `plot_verdict` writes.
@@ -101,8 +110,7 @@ def plot_verdict(result: SceneResult, verdict: Verdict, path: str | Path) -> Non
     ax.set_xlabel("t [s] (steady state)")
     ax.set_ylabel("$y_m / L$ (midspan)")
     where = f"$f_d / f_0$ = {drive.f_d / verdict.f0_hz:.3g}, $f_0$ = {verdict.f0_hz:.3g} Hz"
-    if math.isfinite(verdict.fd_star_estimate_hz):
-        where += f"; linear estimate $f_d^*$ = {verdict.fd_star_estimate_hz:.3g} Hz"
+    where += f"; linear estimate $f_d^*$ = {verdict.fd_star_estimate_hz:.3g} Hz"
     ax.set_title(
         rf"$\Omega_0$ = {drive.omega0:g} rad/s, a = {drive.amplitude:g} rad/s, "
         rf"$f_d$ = {drive.f_d:g} Hz" + f"\n{where}\n" + verdict.text.split(" (")[0],
@@ -135,7 +143,7 @@ class Critical:
     f_d_star: float  #: Hz; NaN unless found
     threshold: float
     f0_hz: float
-    estimate_hz: float  #: App. E's linear estimate c_0 f_0 (NaN where no root exists)
+    estimate_hz: float  #: the linear estimate where the search started (`linear_estimate`)
     visited: list[tuple[float, float]]  #: (f_d, Delta RMS) of every full-model run, in order
     seconds: float
     message: str
@@ -166,7 +174,8 @@ def critical_frequency(
     """f_d* [Hz] of the full model at one speed, by root finding instead of a dense scan (the
     full-model twin of `surrogate.critical_frequency`, same argument order).
 
-    Starts at App. E's linear estimate c_0 f_0 (within a few per cent on the reference beam),
+    Starts at the linear estimate (App. E's c_0 f_0, within a few per cent on the reference
+    beam, or the lag branch for overdamped beams: `linear_estimate`),
     steps by BRACKET_FACTOR until Delta RMS - threshold changes sign, then runs brentq to a
     relative tolerance `rtol` in f_d.  This is the crossing nearest the estimate; it is the
     paper's first crossing where Delta RMS rises monotonically below it, as on every line of the
@@ -181,13 +190,7 @@ def critical_frequency(
         raise RotbeamInputError(f"rtol must be in [1e-8, 0.1], got {rtol!r}")
     t0 = time.perf_counter()
     f0 = resonance_frequency_hz(beam, omega0, amplitude)
-    zeta = beam.derived()["zeta"]
-    try:
-        estimate = c0_root(zeta, th) * f0
-        start = estimate
-    except RotbeamInputError:  # too damped to exceed the static response: start where it lags
-        estimate = math.nan
-        start = _lag_ratio(zeta, th) * f0
+    start = estimate = linear_estimate(beam.derived()["zeta"], th)[1] * f0
     visited: list[tuple[float, float]] = []
     seen: dict[float, float] = {}  # brentq evaluates the bracket ends again: reuse them
     guess = [None]
