@@ -170,21 +170,25 @@ def _write_series(path: str, series: dict[str, np.ndarray]) -> None:
     tmp.replace(out)
 
 
-def cmd_simulate(args: argparse.Namespace) -> int:
+def _check_threshold_flag(value: float) -> None:
     from .criterion import check_threshold
+
+    try:
+        check_threshold(value)
+    except RotbeamInputError as exc:
+        raise RotbeamInputError(f"argument --threshold: {exc}") from None
+
+
+def cmd_simulate(args: argparse.Namespace) -> int:
     from .scene import simulate
-    from .verdict import PLOT_SUFFIXES, judge, plot_verdict
+    from .verdict import check_plot_path, judge, plot_verdict
 
     scene = _scene_from_args(args)
     if args.out and Path(args.out).suffix not in (".csv", ".parquet"):
         raise RotbeamInputError(f"--out must end in .csv or .parquet, got {args.out!r}")
-    if args.plot and Path(args.plot).suffix not in PLOT_SUFFIXES:
-        allowed = ", ".join(PLOT_SUFFIXES)
-        raise RotbeamInputError(f"--plot must end in {allowed}, got {args.plot!r}")
-    try:
-        check_threshold(args.threshold)
-    except RotbeamInputError as exc:
-        raise RotbeamInputError(f"argument --threshold: {exc}") from None
+    if args.plot:
+        check_plot_path(args.plot)
+    _check_threshold_flag(args.threshold)
 
     def progress(k: int, bound: float) -> None:
         print(f"\rperiod {k}: transient bound {bound:.2e}", end="", file=sys.stderr, flush=True)
@@ -211,13 +215,9 @@ def cmd_simulate(args: argparse.Namespace) -> int:
 
 
 def cmd_critical(args: argparse.Namespace) -> int:
-    from .criterion import check_threshold
     from .verdict import critical_frequency
 
-    try:
-        check_threshold(args.threshold)
-    except RotbeamInputError as exc:
-        raise RotbeamInputError(f"argument --threshold: {exc}") from None
+    _check_threshold_flag(args.threshold)
     if not 1e-8 <= args.ftol <= 0.1:
         raise RotbeamInputError(f"argument --ftol: must be in [1e-8, 0.1], got {args.ftol!r}")
     args.fd = (

@@ -34,8 +34,9 @@ from scipy.integrate import solve_ivp
 from .elastica import DiscreteElastica, _check_N
 from .modes import dimensionless_frequencies, linear_forced_response
 from .params import Dimensionless, RotbeamInputError
-from .periodic import PeriodicResult, solve_periodic_adaptive, trig_interpolate
+from .periodic import PeriodicResult, solve_periodic_adaptive
 from .quasistatic import quasistatic_series
+from .spectral import trig_interpolate
 
 METHODS = ("Radau", "BDF", "LSODA", "TRBDF2")
 JACOBIANS = ("exact", "fd")

@@ -82,25 +82,21 @@ class Collocation:
         self._cache = (X, st)
         return st
 
-    def residual(self, X: np.ndarray, jacobian: bool = False):
-        """X: (M, n).  Returns R (M, n) and, if asked, the Jacobian's blocks (`jacobian_blocks`)."""
+    def residual(self, X: np.ndarray) -> np.ndarray:
+        """X: (M, n) -> R (M, n)."""
         m = self.model
         V, A, Mm, Bm, v = self._state(X)
         a = A + m.eta * V
         R = np.einsum("jik,jk->ji", Mm, a) + np.einsum("jik,jk->ji", Bm, v) + X @ m.grid.K.T
         R += m.load_torque_rows(X, self.lam, self.lam_dot)
-        if not jacobian:
-            return R
-        return R, self.jacobian_blocks(X, V, A, Mm, Bm, v)
+        return R
 
-    def jacobian_at(self, X: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """The Jacobian blocks at X (reusing the residual's work when X was its last argument)."""
-        return self.jacobian_blocks(X, *self._state(X))
-
-    def jacobian_blocks(self, X, V, A, Mm, Bm, v) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """The Jacobian as (M, n, n) block sets: J = diag(L_j) + diag(C_j) D + diag(M_j) D^2."""
+    def jacobian_blocks(self, X: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """The Jacobian at X as (M, n, n) block sets: J = diag(L_j) + diag(C_j) D + diag(M_j) D^2
+        (reusing the residual's work when X was its last argument)."""
         m = self.model
         n = m.n
+        V, A, Mm, Bm, v = self._state(X)
         a = A + m.eta * V
         Ba = np.einsum("jik,jk->ji", Bm, a)
         Mv = np.einsum("jik,jk->ji", Mm, v)
@@ -224,7 +220,7 @@ def solve_periodic(
     msg = "exact" if converged else "no convergence"
     while not converged and it < maxiter:
         it += 1
-        blocks = col.jacobian_at(X)
+        blocks = col.jacobian_blocks(X)
         try:
             step, krylov, inv = _newton_step(col, blocks, R, linear, inv)
         except (np.linalg.LinAlgError, ValueError):

@@ -1,8 +1,8 @@
 """Trigonometric (Fourier) tools on M equispaced instants of one period.
 
-Shared by the periodic collocation (`rotbeam.periodic`) and the quasi-static response over a
-period (`rotbeam.quasistatic`): differentiation, interpolation to other instants and the
-harmonic tail that says whether M instants resolve the signal.
+Shared by the periodic collocation (`rotbeam.periodic`) and the steady state it seeds
+(`rotbeam.integrate`): differentiation, interpolation to other instants and the harmonic tail
+that says whether M instants resolve the signal.
 """
 
 from __future__ import annotations

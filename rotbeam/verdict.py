@@ -93,11 +93,17 @@ def linear_estimate(zeta: float, threshold: float) -> tuple[float, float, str]:
 PLOT_SUFFIXES = (".png", ".pdf", ".svg")
 
 
-def plot_verdict(result: SceneResult, verdict: Verdict, path: str | Path) -> None:
-    """y_m over the steady window, dynamic against quasi-static, with the verdict and the cost."""
+def check_plot_path(path: str | Path) -> Path:
+    """The --plot path, if its suffix is one `plot_verdict` writes (checked before a run)."""
     path = Path(path)
     if path.suffix not in PLOT_SUFFIXES:
         raise RotbeamInputError(f"--plot must end in {', '.join(PLOT_SUFFIXES)}, got {str(path)!r}")
+    return path
+
+
+def plot_verdict(result: SceneResult, verdict: Verdict, path: str | Path) -> None:
+    """y_m over the steady window, dynamic against quasi-static, with the verdict and the cost."""
+    path = check_plot_path(path)
     series = result.time_series()
     t = series["t_s"] - series["t_s"][0]
     scene = result.scene
@@ -133,6 +139,10 @@ def _lag_ratio(zeta: float, threshold: float) -> float:
         if B >= 0
         else math.sqrt(-C / (-B + math.sqrt(B * B - C)))
     )
+
+
+class _NoSteadyState(Exception):
+    """A run of the f_d* search reached no steady state: the search stops and says why."""
 
 
 @dataclass(frozen=True)
@@ -191,48 +201,43 @@ def critical_frequency(
     t0 = time.perf_counter()
     f0 = resonance_frequency_hz(beam, omega0, amplitude)
     start = estimate = linear_estimate(beam.derived()["zeta"], th)[1] * f0
-    visited: list[tuple[float, float]] = []
-    seen: dict[float, float] = {}  # brentq evaluates the bracket ends again: reuse them
-    guess = [None]
-
-    class NoSteadyState(Exception):
-        pass
+    seen: dict[float, float] = {}  # f_d -> Delta RMS; brentq evaluates the bracket ends again
+    guess = None  # the last orbit seeds the next collocation
 
     def excess(f_d: float) -> float:
-        if f_d in seen:
-            return seen[f_d] - th
-        res = simulate(Scene(beam, Drive(omega0, amplitude, f_d), effects, numerics),
-                       guess=guess[0])  # fmt: skip
-        if not res.converged or not math.isfinite(res.delta_rms):
-            raise NoSteadyState(f"no steady state at f_d = {f_d:.4g} Hz: {res.dynamic.message}")
-        periodic = res.dynamic.periodic
-        guess[0] = periodic.theta.T if periodic is not None and periodic.converged else None
-        visited.append((f_d, res.delta_rms))
-        seen[f_d] = res.delta_rms
-        return res.delta_rms - th
+        nonlocal guess
+        if f_d not in seen:
+            scene = Scene(beam, Drive(omega0, amplitude, f_d), effects, numerics)
+            res = simulate(scene, guess=guess)
+            if not res.converged or not math.isfinite(res.delta_rms):
+                raise _NoSteadyState(
+                    f"no steady state at f_d = {f_d:.4g} Hz: {res.dynamic.message}"
+                )
+            orbit = res.dynamic.periodic
+            guess = orbit.theta.T if orbit is not None and orbit.converged else None
+            seen[f_d] = res.delta_rms
+        return seen[f_d] - th
 
     def done(found: bool, f: float, msg: str) -> Critical:
+        visited = list(seen.items())
         return Critical(found, f, th, f0, estimate, visited, time.perf_counter() - t0, msg)
 
     try:
-        lo = hi = start
-        g = excess(start)
+        f, g = start, excess(start)
+        if g == 0.0:
+            return done(True, f, "Delta RMS equals the threshold at the start")
         step = BRACKET_FACTOR if g < 0 else 1.0 / BRACKET_FACTOR
         for _ in range(MAX_STEPS):
-            if g == 0.0:
-                return done(True, lo, "Delta RMS equals the threshold at the start")
-            nxt = (hi if step > 1 else lo) * step
-            g_new = excess(nxt)
-            if (g_new > 0) != (g > 0) or g_new == 0.0:
-                lo, hi = sorted((nxt, nxt / step))
+            g_next = excess(f * step)
+            if g_next == 0.0 or (g_next > 0) != (g > 0):
+                lo, hi = sorted((f, f * step))
                 break
-            lo = hi = nxt
-            g = g_new
+            f, g = f * step, g_next
         else:
             side = "below" if step > 1 else "above"
             return done(False, math.nan, f"Delta RMS stays {side} {th:g} from {start:.4g} Hz to "
-                        f"{lo:.4g} Hz ({MAX_STEPS} steps of x{step:.3g})")  # fmt: skip
+                        f"{f:.4g} Hz ({MAX_STEPS} steps of x{step:.3g})")  # fmt: skip
         root = brentq(excess, lo, hi, rtol=rtol, xtol=1e-12 * hi)
-    except NoSteadyState as exc:
+    except _NoSteadyState as exc:
         return done(False, math.nan, str(exc))
     return done(True, float(root), f"brentq in [{lo:.4g}, {hi:.4g}] Hz to rtol {rtol:g}")
