@@ -352,7 +352,12 @@ def steady_state(
             # is within ss_tol of the steady state:
             # |Z_{k-p} - Z_inf| <= d (sum_{q<p} rho^-q + rho / (1 - rho))
             p = num.rms_periods
-            reach = sum(rho**-q for q in range(p)) + rho / (1.0 - rho) if rho > 0 else math.inf
+            if d == 0.0:  # an exact fixed point of the period map (also undamped: rho = 1)
+                reach = 0.0
+            elif rho > 0.0:  # bound <= ss_tol with d > 0 means rho < 1
+                reach = sum(rho**-q for q in range(p)) + rho / (1.0 - rho)
+            else:
+                reach = math.inf
             reuse = k >= p and len(window) == p and d * reach / size <= num.ss_tol
             break
     else:

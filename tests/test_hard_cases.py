@@ -515,6 +515,16 @@ def test_zero_amplitude_exactly_straight(omega0):
     assert res.delta_rms == 0.0
 
 
+def test_undamped_without_euler_load_is_exactly_straight():
+    """Damping and the Euler load both off (`--effects centrifugal`): no load ever bends the beam,
+    the straight beam repeats exactly (d = 0) although rho = 1.  Used to divide by 1 - rho."""
+    res, cpu = run(REF, Drive(5.0, 1.0, 2.0), Effects.from_list("centrifugal"))
+    steady(res)
+    report("undamped, no Euler load", message=res.dynamic.message, cpu=cpu)
+    assert res.scene.beam.derived()["eta"] > 0 and not res.scene.effects.damping
+    assert np.max(np.abs(res.dynamic.theta)) == 0.0 and res.delta_rms == 0.0
+
+
 # --- 7. tiny and huge beams -----------------------------------------------------------------------
 def test_tiny_stiff_overdamped_beam():
     """L = 0.1 mm, E = 1 GPa, h/L = 0.01 (Fig. 7 grid): f_n = 14.9 kHz, zeta = 35.5, R/L = 1550.
