@@ -16,7 +16,7 @@ from typing import Any
 
 import numpy as np
 
-from .params import BETA1, C_MAX_LIMIT, Beam, RotbeamInputError
+from .model.params import BETA1, C_MAX_LIMIT, Beam, RotbeamInputError
 
 EXIT_USAGE = 2
 
@@ -112,8 +112,8 @@ def _scene_flags(p: argparse.ArgumentParser, drive_frequency: bool) -> None:
 
 
 def _scene_from_args(args: argparse.Namespace):
-    from .params import Effects
-    from .scene import build_scene, load_scene_file, scene_sections
+    from .model.params import Effects
+    from .simulate.scene import build_scene, load_scene_file, scene_sections
 
     spec = scene_sections(load_scene_file(args.scene) if args.scene else {})
     flags = {}  # scene key -> the flag that set it, named in an error about that key
@@ -171,7 +171,7 @@ def _write_series(path: str, series: dict[str, np.ndarray]) -> None:
 
 
 def _check_threshold_flag(value: float) -> None:
-    from .criterion import check_threshold
+    from .model.criterion import check_threshold
 
     try:
         check_threshold(value)
@@ -180,8 +180,8 @@ def _check_threshold_flag(value: float) -> None:
 
 
 def cmd_simulate(args: argparse.Namespace) -> int:
-    from .scene import simulate
-    from .verdict import check_plot_path, judge, plot_verdict
+    from .analysis.verdict import check_plot_path, judge, plot_verdict
+    from .simulate.scene import simulate
 
     scene = _scene_from_args(args)
     if args.out and Path(args.out).suffix not in (".csv", ".parquet"):
@@ -215,7 +215,7 @@ def cmd_simulate(args: argparse.Namespace) -> int:
 
 
 def cmd_critical(args: argparse.Namespace) -> int:
-    from .verdict import critical_frequency
+    from .analysis.verdict import critical_frequency
 
     _check_threshold_flag(args.threshold)
     if not 1e-8 <= args.ftol <= 0.1:
@@ -251,7 +251,7 @@ def _check_rotation(flag: str, value: float, c: float, formula: str) -> None:
 
 
 def cmd_modes(args: argparse.Namespace) -> int:
-    from .modes import dimensionless_frequencies, natural_frequencies_hz
+    from .model.modes import dimensionless_frequencies, natural_frequencies_hz
 
     if not 3 <= args.N <= 2000:
         raise RotbeamInputError(f"--N must be in [3, 2000], got {args.N}")
@@ -283,8 +283,8 @@ def cmd_modes(args: argparse.Namespace) -> int:
 
 
 def cmd_bench(args: argparse.Namespace) -> int:
-    from .bench import plan_from_dict, run_benchmark, write_outputs
-    from .scene import load_yaml
+    from .bench.benchmark import plan_from_dict, run_benchmark, write_outputs
+    from .simulate.scene import load_yaml
 
     spec: dict[str, Any] = {}
     if args.config:

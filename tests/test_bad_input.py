@@ -25,9 +25,9 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from rotbeam.cli import main
-from rotbeam.params import RotbeamInputError
-from rotbeam.scene import load_yaml
-from rotbeam.studies import lines_from_config, validate_config
+from rotbeam.model.params import RotbeamInputError
+from rotbeam.simulate.scene import load_yaml
+from rotbeam.simulate.studies import lines_from_config, validate_config
 
 ROOT = Path(__file__).resolve().parents[1]
 SCHEMA = ROOT / "workflow" / "schemas" / "config.schema.yaml"

@@ -8,7 +8,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from rotbeam.bench import (
+from rotbeam.bench.benchmark import (
     BenchPlan,
     choose_default,
     reference,
@@ -16,10 +16,10 @@ from rotbeam.bench import (
     speedups,
     write_outputs,
 )
-from rotbeam.integrate import Numerics
-from rotbeam.params import Beam, Drive, Effects
-from rotbeam.periodic import solve_periodic
-from rotbeam.scene import Scene, build_scene, simulate
+from rotbeam.model.params import Beam, Drive, Effects
+from rotbeam.simulate.scene import Scene, build_scene, simulate
+from rotbeam.solve.periodic import solve_periodic
+from rotbeam.solve.steady import Numerics
 
 # the benchmark scenes (Omega_0 rad/s, f_d Hz); near resonance (5, 7) is the slow one
 SCENES = [(5.0, 2.0), (5.0, 7.0), (5.0, 15.0), (100.0, 5.0), (100.0, 30.0)]
@@ -138,8 +138,8 @@ def test_micro_benchmark_writes_every_output(tmp_path):
 
 
 def test_bad_plan_names_the_key():
-    from rotbeam.bench import plan_from_dict
-    from rotbeam.params import RotbeamInputError
+    from rotbeam.bench.benchmark import plan_from_dict
+    from rotbeam.model.params import RotbeamInputError
 
     with pytest.raises(RotbeamInputError, match="curves.*nope"):
         replace(BenchPlan(), curves=("nope",))
@@ -153,8 +153,8 @@ def test_bad_plan_names_the_key():
      ({"ref_N": ["x", 2, 3]}, "ref_N"), ({"grid": 5}, "grid")],
 )  # fmt: skip
 def test_malformed_plan_lists_name_the_key(spec, key):
-    from rotbeam.bench import plan_from_dict
-    from rotbeam.params import RotbeamInputError
+    from rotbeam.bench.benchmark import plan_from_dict
+    from rotbeam.model.params import RotbeamInputError
 
     with pytest.raises(RotbeamInputError, match=f"benchmark.{key} = .*must be"):
         plan_from_dict(spec)

@@ -4,13 +4,13 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from rotbeam.criterion import rms
-from rotbeam.elastica import DiscreteElastica, Grid
-from rotbeam.integrate import Numerics, steady_state
-from rotbeam.modes import natural_frequencies_hz
-from rotbeam.params import Beam, Dimensionless, Drive
-from rotbeam.periodic import solve_periodic, solve_periodic_adaptive
-from rotbeam.scene import Scene, simulate
+from rotbeam.model.criterion import rms
+from rotbeam.model.elastica import DiscreteElastica, Grid
+from rotbeam.model.modes import natural_frequencies_hz
+from rotbeam.model.params import Beam, Dimensionless, Drive
+from rotbeam.simulate.scene import Scene, simulate
+from rotbeam.solve.periodic import solve_periodic, solve_periodic_adaptive
+from rotbeam.solve.steady import Numerics, steady_state
 
 BEAM = Beam()
 
@@ -93,7 +93,7 @@ def test_reference_beam_resonance_near_7_hz():
 def test_verified_orbit_is_reported_from_the_collocation():
     """A converged collocated orbit that one period of time stepping confirms is reported as the
     collocation's own trigonometric samples (not the stepper's), equal to a tight long run."""
-    from rotbeam.spectral import trig_interpolate
+    from rotbeam.solve.spectral import trig_interpolate
 
     dl = dl_of(5.0, 2.0)
     num = Numerics(N=20, ss_tol=1e-2, rtol=1e-2, tail_tol=1e-2)

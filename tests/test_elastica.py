@@ -3,8 +3,8 @@
 import numpy as np
 import pytest
 
-from rotbeam.elastica import DiscreteElastica, Grid
-from rotbeam.params import Effects
+from rotbeam.model.elastica import DiscreteElastica, Grid
+from rotbeam.model.params import Effects
 
 
 @pytest.mark.parametrize("N", [5, 16, 40])

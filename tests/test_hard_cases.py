@@ -26,12 +26,12 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_bvp
 
-from rotbeam.criterion import rms
-from rotbeam.elastica import DiscreteElastica, Grid
-from rotbeam.integrate import Numerics
-from rotbeam.modes import linear_forced_response
-from rotbeam.params import Beam, Dimensionless, Drive, Effects, fd_for_emax, omega0_for_cmax
-from rotbeam.scene import Scene, SceneResult, quasistatic_midspan, simulate
+from rotbeam.model.criterion import rms
+from rotbeam.model.elastica import DiscreteElastica, Grid
+from rotbeam.model.modes import linear_forced_response
+from rotbeam.model.params import Beam, Dimensionless, Drive, Effects, fd_for_emax, omega0_for_cmax
+from rotbeam.simulate.scene import Scene, SceneResult, quasistatic_midspan, simulate
+from rotbeam.solve.steady import Numerics
 
 try:
     from chain_model import ChainModel, chain_steady_rms

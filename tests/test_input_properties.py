@@ -7,8 +7,8 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from rotbeam.modes import natural_frequencies_hz
-from rotbeam.params import Beam, Drive, RotbeamInputError
+from rotbeam.model.modes import natural_frequencies_hz
+from rotbeam.model.params import Beam, Drive, RotbeamInputError
 
 pos = st.floats(min_value=1e-3, max_value=1e3)
 KEYS = ["L", "h", "b", "E", "rho", "R", "gamma"]

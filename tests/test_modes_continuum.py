@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_bvp
 
-from rotbeam.modes import dimensionless_frequencies
+from rotbeam.model.modes import dimensionless_frequencies
 
 
 def continuum_first_frequency(lam: float, hub: float) -> float:

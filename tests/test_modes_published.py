@@ -58,7 +58,7 @@ import functools
 import numpy as np
 import pytest
 
-from rotbeam.modes import dimensionless_frequencies
+from rotbeam.model.modes import dimensionless_frequencies
 
 GRIDS = (40, 80, 160)
 N_MODES = 2

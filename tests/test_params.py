@@ -4,7 +4,7 @@ import math
 
 import pytest
 
-from rotbeam.params import BETA1, Beam, Dimensionless, Drive, Effects, RotbeamInputError
+from rotbeam.model.params import BETA1, Beam, Dimensionless, Drive, Effects, RotbeamInputError
 
 
 def test_reference_beam_groups():

@@ -3,9 +3,9 @@
 import numpy as np
 import pytest
 
-from rotbeam.elastica import DiscreteElastica
-from rotbeam.params import Dimensionless, Effects
-from rotbeam.quasistatic import quasistatic_series, solve_static, solve_static_bvp
+from rotbeam.model.elastica import DiscreteElastica
+from rotbeam.model.params import Dimensionless, Effects
+from rotbeam.model.quasistatic import quasistatic_series, solve_static, solve_static_bvp
 
 
 def linear_cantilever(s, hub, lam_dot):
@@ -78,8 +78,8 @@ def test_batched_static_equals_continuation(monkeypatch, omega0, f_d, a):
     """All instants in one batched Newton give the same quasi-static series as the robust path
     (sequential continuation in time), down to Newton's tolerance: small angles (chord Newton),
     just below its 0.1 rad limit (a = 1.8: 0.09 rad), across it and large (plain Newton)."""
-    from rotbeam import quasistatic
-    from rotbeam.scene import build_scene
+    from rotbeam.model import quasistatic
+    from rotbeam.simulate.scene import build_scene
 
     dl = build_scene({"drive": {"omega0": omega0, "f_d": f_d, "amplitude": a}}).dimensionless
     model = DiscreteElastica(30, dl.hub_ratio, dl.eta, dl.effects)

@@ -19,12 +19,12 @@ import numpy as np
 import pandas as pd
 import pytest
 
-import rotbeam.sweeps
-from rotbeam.boundary import boundary_table, c_per_threshold, fit_c
-from rotbeam.integrate import Numerics
-from rotbeam.io import write_csv
-from rotbeam.params import Beam
-from rotbeam.sweeps import COLUMNS, scan_line
+import rotbeam.simulate.sweeps
+from rotbeam.analysis.boundary import boundary_table, c_per_threshold, fit_c
+from rotbeam.model.params import Beam
+from rotbeam.report.io import write_csv
+from rotbeam.simulate.sweeps import COLUMNS, scan_line
+from rotbeam.solve.steady import Numerics
 
 ROOT = Path(__file__).resolve().parents[1]
 REF_BEAM = dict(L=0.040, h=0.002, b=0.010, E=1.22e6, rho=1170.2, R=0.155, gamma=0.039)
@@ -106,7 +106,7 @@ def test_fit_counts_used_and_dropped_lines():
 WRITER = """
 import pathlib, sys, time
 import pandas as pd
-from rotbeam import io
+from rotbeam.report import io
 
 kind, path = sys.argv[1], sys.argv[2]
 
@@ -220,7 +220,7 @@ def test_interrupted_workflow_reruns_only_unfinished_jobs(tmp_path, interrupt):
     # 300 s).  A user's `kill` can hit it too; that is snakemake's to fix, not the workflow's.
     script = work / "workflow" / "scripts" / "sweep_line.py"
     code = script.read_text()
-    anchor = "from rotbeam.io import write_csv\n"
+    anchor = "from rotbeam.report.io import write_csv\n"
     assert anchor in code
     script.write_text(code.replace(anchor, f"import time\n\ntime.sleep({JOB_PAUSE})\n{anchor}", 1))
     sims = work / "results" / "sims" / "ref"

@@ -17,9 +17,9 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 from chain_model import chain_steady_rms  # noqa: E402
 
-from rotbeam.criterion import rms  # noqa: E402
-from rotbeam.integrate import Numerics, steady_state  # noqa: E402
-from rotbeam.params import Beam, Dimensionless, Drive  # noqa: E402
+from rotbeam.model.criterion import rms  # noqa: E402
+from rotbeam.model.params import Beam, Dimensionless, Drive  # noqa: E402
+from rotbeam.solve.steady import Numerics, steady_state  # noqa: E402
 
 BEAM = Beam()
 

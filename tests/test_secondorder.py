@@ -14,8 +14,8 @@ import pytest
 from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 
-from rotbeam.params import Beam, RotbeamInputError
-from rotbeam.secondorder import (
+from rotbeam.model.params import Beam, RotbeamInputError
+from rotbeam.model.secondorder import (
     PRINTED_C0_TABLE,
     biquadratic_residual,
     c0_limit,

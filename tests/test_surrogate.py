@@ -16,12 +16,10 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from rotbeam.integrate import Numerics
-from rotbeam.modes import dimensionless_frequencies
-from rotbeam.params import BETA1, Beam, Dimensionless, Drive, Effects, RotbeamInputError
-from rotbeam.scene import Scene, simulate
-from rotbeam.secondorder import c0_root, delta_rms_canonical
-from rotbeam.surrogate import (
+from rotbeam.model.modes import dimensionless_frequencies
+from rotbeam.model.params import BETA1, Beam, Dimensionless, Drive, Effects, RotbeamInputError
+from rotbeam.model.secondorder import c0_root, delta_rms_canonical
+from rotbeam.model.surrogate import (
     SurrogateModel,
     analytical_boundary,
     analytical_boundary_exact,
@@ -32,6 +30,8 @@ from rotbeam.surrogate import (
     southwell_frequency_hz,
     steady_rms,
 )
+from rotbeam.simulate.scene import Scene, simulate
+from rotbeam.solve.steady import Numerics
 
 BEAM = Beam()
 

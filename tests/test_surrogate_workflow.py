@@ -17,10 +17,10 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from rotbeam.criterion import critical_from_scan
-from rotbeam.params import Beam, Dimensionless, Drive, Effects, drive_groups
-from rotbeam.surrogate import steady_rms
-from rotbeam.surrogate_figures import (
+from rotbeam.model.criterion import critical_from_scan
+from rotbeam.model.params import Beam, Dimensionless, Drive, Effects, drive_groups
+from rotbeam.model.surrogate import steady_rms
+from rotbeam.report.surrogate_figures import (
     peak_of_line,
     southwell_figure,
     southwell_table,
@@ -30,7 +30,7 @@ from rotbeam.surrogate_figures import (
     vs_full_figure,
     vs_full_table,
 )
-from rotbeam.sweeps import resonance_frequency_hz
+from rotbeam.simulate.sweeps import resonance_frequency_hz
 
 ROOT = Path(__file__).resolve().parents[1]
 BEAM = {"L": 0.040, "h": 0.002, "b": 0.010, "E": 1.22e6, "rho": 1170.2, "R": 0.155, "gamma": 0.039}

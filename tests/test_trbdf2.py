@@ -9,10 +9,10 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from rotbeam.elastica import DiscreteElastica
-from rotbeam.integrate import initial_state
-from rotbeam.scene import build_scene
-from rotbeam.trbdf2 import (
+from rotbeam.model.elastica import DiscreteElastica
+from rotbeam.simulate.scene import build_scene
+from rotbeam.solve.steady import initial_state
+from rotbeam.solve.trbdf2 import (
     A_Y,
     A_Z,
     E_1,

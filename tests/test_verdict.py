@@ -9,13 +9,13 @@ import math
 import numpy as np
 import pytest
 
-from rotbeam.criterion import critical_from_scan
-from rotbeam.integrate import Numerics
-from rotbeam.params import Beam, Drive, Effects
-from rotbeam.scene import Scene, simulate
-from rotbeam.secondorder import delta_rms_canonical
-from rotbeam.sweeps import scan_line
-from rotbeam.verdict import _lag_ratio, critical_frequency, judge
+from rotbeam.analysis.verdict import _lag_ratio, critical_frequency, judge
+from rotbeam.model.criterion import critical_from_scan
+from rotbeam.model.params import Beam, Drive, Effects
+from rotbeam.model.secondorder import delta_rms_canonical
+from rotbeam.simulate.scene import Scene, simulate
+from rotbeam.simulate.sweeps import scan_line
+from rotbeam.solve.steady import Numerics
 
 NUM = Numerics(N=20)
 

@@ -6,8 +6,8 @@ from snakemake.utils import validate
 
 import rotbeam
 
-from rotbeam.params import RotbeamInputError
-from rotbeam.studies import (
+from rotbeam.model.params import RotbeamInputError
+from rotbeam.simulate.studies import (
     REF,
     fig7_beams,
     lines_from_config,
@@ -48,11 +48,11 @@ except WorkflowError:
 
 PKG = Path(rotbeam.__file__).parent
 # cheap downstream rules rerun when the package code they use changes
-CODE_ANALYSIS = [str(PKG / f) for f in ("boundary.py", "criterion.py")]
-CODE_FIGURES = [str(PKG / f) for f in ("figures.py", "plotting.py")]
+CODE_ANALYSIS = [str(PKG / f) for f in ("analysis/boundary.py", "model/criterion.py")]
+CODE_FIGURES = [str(PKG / f) for f in ("report/figures.py", "report/style.py")]
 CODE_SOLVER = [
     str(PKG / f)
-    for f in ("bench.py", "elastica.py", "integrate.py", "periodic.py", "trbdf2.py")
+    for f in ("bench/benchmark.py", "model/elastica.py", "solve/steady.py", "solve/periodic.py", "solve/trbdf2.py")
 ]
 
 

@@ -3,14 +3,14 @@
 SURROGATE_CODE = [
     str(PKG / f)
     for f in (
-        "surrogate.py",
-        "surrogate_figures.py",
-        "modes.py",
-        "elastica.py",
-        "params.py",
-        "criterion.py",
-        "boundary.py",
-        "plotting.py",
+        "model/surrogate.py",
+        "report/surrogate_figures.py",
+        "model/modes.py",
+        "model/elastica.py",
+        "model/params.py",
+        "model/criterion.py",
+        "analysis/boundary.py",
+        "report/style.py",
     )
 ]
 SURROGATE_FIG4_LINES = expand(

@@ -4,7 +4,7 @@
 # (`snakemake` is injected by Snakemake)
 import sys
 
-from rotbeam.bench import plan_from_dict, run_benchmark, write_outputs
+from rotbeam.bench.benchmark import plan_from_dict, run_benchmark, write_outputs
 
 with open(snakemake.log[0], "w") as log:
     plan = plan_from_dict(snakemake.params.plan)

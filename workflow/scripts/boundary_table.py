@@ -4,8 +4,8 @@
 # (`snakemake` is injected by Snakemake)
 import pandas as pd
 
-from rotbeam.boundary import boundary_table
-from rotbeam.io import write_csv
+from rotbeam.analysis.boundary import boundary_table
+from rotbeam.report.io import write_csv
 
 lines = [pd.read_csv(f) for f in snakemake.input.lines]
 table = boundary_table(lines, snakemake.params.thresholds, snakemake.params.beam,

@@ -4,9 +4,9 @@
 # (`snakemake` is injected by Snakemake)
 import pandas as pd
 
-from rotbeam.io import write_table
-from rotbeam.params import Beam
-from rotbeam.secondorder import c0_limit, c0_root
+from rotbeam.model.params import Beam
+from rotbeam.model.secondorder import c0_limit, c0_root
+from rotbeam.report.io import write_table
 
 zeta = Beam(**snakemake.params.beam).zeta
 printed = {0.02: 0.1414, 0.04: 0.2000, 0.06: 0.2449, 0.08: 0.2828, 0.10: 0.3162}

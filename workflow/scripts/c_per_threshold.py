@@ -4,8 +4,8 @@
 # (`snakemake` is injected by Snakemake)
 import pandas as pd
 
-from rotbeam.boundary import c_per_threshold
-from rotbeam.io import write_table
+from rotbeam.analysis.boundary import c_per_threshold
+from rotbeam.report.io import write_table
 
 ref = pd.read_csv(snakemake.input.ref)
 beams = pd.concat([pd.read_csv(f) for f in snakemake.input.beams], ignore_index=True)

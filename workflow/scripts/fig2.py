@@ -4,6 +4,6 @@
 # (`snakemake` is injected by Snakemake)
 import pandas as pd
 
-from rotbeam.figures import fig2_shapes
+from rotbeam.report.figures import fig2_shapes
 
 fig2_shapes(pd.read_csv(snakemake.input[0]), snakemake.output.pdf, snakemake.output.png)

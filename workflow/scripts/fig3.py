@@ -4,7 +4,7 @@
 # (`snakemake` is injected by Snakemake)
 import pandas as pd
 
-from rotbeam.figures import fig3_resonance
+from rotbeam.report.figures import fig3_resonance
 
 fig3_resonance(
     pd.read_csv(snakemake.input.line), pd.read_csv(snakemake.input.series),

@@ -4,9 +4,9 @@
 # (`snakemake` is injected by Snakemake)
 import pandas as pd
 
-from rotbeam.boundary import boundary_table
-from rotbeam.figures import fig4_compare
-from rotbeam.io import write_csv
+from rotbeam.analysis.boundary import boundary_table
+from rotbeam.report.figures import fig4_compare
+from rotbeam.report.io import write_csv
 
 lines = [pd.read_csv(f) for f in snakemake.input.lines]
 th = snakemake.params.threshold

@@ -4,7 +4,7 @@
 # (`snakemake` is injected by Snakemake)
 import pandas as pd
 
-from rotbeam.figures import fig5_phase
+from rotbeam.report.figures import fig5_phase
 
 fig5_phase(
     pd.read_csv(snakemake.input.boundary), snakemake.params.threshold,

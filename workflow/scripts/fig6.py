@@ -5,9 +5,9 @@
 import numpy as np
 import pandas as pd
 
-from rotbeam.boundary import fit_c
-from rotbeam.figures import fig6_critical
-from rotbeam.io import write_json
+from rotbeam.analysis.boundary import fit_c
+from rotbeam.report.figures import fig6_critical
+from rotbeam.report.io import write_json
 
 b = pd.read_csv(snakemake.input.boundary)
 th = snakemake.params.threshold

@@ -5,9 +5,9 @@
 import numpy as np
 import pandas as pd
 
-from rotbeam.boundary import fit_c
-from rotbeam.figures import ZETA_UNDERDAMPED, fig7_collapse
-from rotbeam.io import write_json
+from rotbeam.analysis.boundary import fit_c
+from rotbeam.report.figures import ZETA_UNDERDAMPED, fig7_collapse
+from rotbeam.report.io import write_json
 
 b = pd.concat([pd.read_csv(f) for f in snakemake.input.beams], ignore_index=True)
 b = b[np.isclose(b["threshold"], snakemake.params.threshold)]

@@ -4,8 +4,8 @@
 # (`snakemake` is injected by Snakemake)
 import pandas as pd
 
-from rotbeam.figures import figB8_convergence
-from rotbeam.io import write_csv
+from rotbeam.report.figures import figB8_convergence
+from rotbeam.report.io import write_csv
 
 df = pd.concat([pd.read_csv(f) for f in snakemake.input.lines], ignore_index=True)
 write_csv(df, snakemake.output.table)

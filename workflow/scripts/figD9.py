@@ -4,7 +4,7 @@
 # (`snakemake` is injected by Snakemake)
 import pandas as pd
 
-from rotbeam.figures import figD9_thresholds
+from rotbeam.report.figures import figD9_thresholds
 
 ref = pd.read_csv(snakemake.input.ref)
 figD9_thresholds(ref, pd.read_csv(snakemake.input.cfit), snakemake.output.pdf,

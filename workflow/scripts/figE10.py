@@ -2,8 +2,8 @@
 
 # ruff: noqa: F821
 # (`snakemake` is injected by Snakemake)
-from rotbeam.figures import figE10_c0
-from rotbeam.params import Beam
+from rotbeam.model.params import Beam
+from rotbeam.report.figures import figE10_c0
 
 s = snakemake.params.spec
 figE10_c0(s["zeta_max"], s["points"], Beam(**snakemake.params.beam), *snakemake.output)

@@ -6,10 +6,10 @@ from dataclasses import replace
 
 import pandas as pd
 
-from rotbeam.io import write_csv
-from rotbeam.params import Beam, Drive, Effects
-from rotbeam.scene import Scene, simulate
-from rotbeam.sweeps import numerics_from_config
+from rotbeam.model.params import Beam, Drive, Effects
+from rotbeam.report.io import write_csv
+from rotbeam.simulate.scene import Scene, simulate
+from rotbeam.simulate.sweeps import numerics_from_config
 
 spec = snakemake.params.spec
 num = numerics_from_config(snakemake.params.numerics)

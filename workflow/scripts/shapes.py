@@ -4,11 +4,11 @@
 
 from dataclasses import replace
 
-from rotbeam.io import write_csv
-from rotbeam.params import Beam, Drive, Effects
-from rotbeam.scene import Scene, simulate
-from rotbeam.shapes import shapes_over_period
-from rotbeam.sweeps import numerics_from_config
+from rotbeam.model.params import Beam, Drive, Effects
+from rotbeam.model.shapes import shapes_over_period
+from rotbeam.report.io import write_csv
+from rotbeam.simulate.scene import Scene, simulate
+from rotbeam.simulate.sweeps import numerics_from_config
 
 p = snakemake.params
 num = replace(

@@ -6,10 +6,10 @@ from pathlib import Path
 
 import pandas as pd
 
-from rotbeam.io import write_table
-from rotbeam.params import Beam
-from rotbeam.surrogate import southwell_coefficient
-from rotbeam.surrogate_figures import discretisation_floor, southwell_figure, southwell_table
+from rotbeam.model.params import Beam
+from rotbeam.model.surrogate import southwell_coefficient
+from rotbeam.report.io import write_table
+from rotbeam.report.surrogate_figures import discretisation_floor, southwell_figure, southwell_table
 
 p = snakemake.params
 peaks = {Path(f).stem: pd.read_csv(f) for f in snakemake.input.lines}

@@ -7,9 +7,9 @@ from pathlib import Path
 
 import pandas as pd
 
-from rotbeam.io import write_csv, write_json, write_table
-from rotbeam.params import Effects
-from rotbeam.surrogate_figures import (
+from rotbeam.model.params import Effects
+from rotbeam.report.io import write_csv, write_json, write_table
+from rotbeam.report.surrogate_figures import (
     full_critical,
     surrogate_boundary,
     surrogate_curve,

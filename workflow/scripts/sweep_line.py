@@ -2,10 +2,10 @@
 # ruff: noqa: F821
 # (`snakemake` is injected by Snakemake)
 
-from rotbeam.io import write_csv
-from rotbeam.params import Beam, Effects
-from rotbeam.studies import scan_frequencies
-from rotbeam.sweeps import numerics_from_config, scan_line
+from rotbeam.model.params import Beam, Effects
+from rotbeam.report.io import write_csv
+from rotbeam.simulate.studies import scan_frequencies
+from rotbeam.simulate.sweeps import numerics_from_config, scan_line
 
 spec = snakemake.params.spec
 numerics = dict(snakemake.params.numerics)

@@ -4,9 +4,9 @@
 # (`snakemake` is injected by Snakemake)
 import pandas as pd
 
-from rotbeam.io import write_table
-from rotbeam.params import Beam
-from rotbeam.secondorder import systems_table
+from rotbeam.model.params import Beam
+from rotbeam.model.secondorder import systems_table
+from rotbeam.report.io import write_table
 
 df = pd.DataFrame(systems_table(Beam(**snakemake.params.beam)))
 write_table(df, snakemake.output.csv, snakemake.output.md,

@@ -4,8 +4,8 @@
 # (`snakemake` is injected by Snakemake)
 import pandas as pd
 
-from rotbeam.io import write_table
-from rotbeam.params import Beam
+from rotbeam.model.params import Beam
+from rotbeam.report.io import write_table
 
 b = Beam(**snakemake.params.beam)
 rows = [

@@ -24,9 +24,9 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.linalg as sla
 
-from .elastica import DiscreteElastica
-from .modes import linear_forced_response
-from .params import Dimensionless
+from ..model.elastica import DiscreteElastica
+from ..model.modes import linear_forced_response
+from ..model.params import Dimensionless
 from .spectral import fourier_diff_matrix, harmonic_tail, trig_interpolate
 
 

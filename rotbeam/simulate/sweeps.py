@@ -11,9 +11,9 @@ from dataclasses import replace
 import numpy as np
 import pandas as pd
 
-from .integrate import Numerics
-from .modes import natural_frequencies_hz
-from .params import Beam, Drive, Effects, RotbeamInputError, drive_groups
+from ..model.modes import natural_frequencies_hz
+from ..model.params import Beam, Drive, Effects, RotbeamInputError, drive_groups
+from ..solve.steady import Numerics
 from .scene import Scene, simulate
 
 COLUMNS = [

@@ -14,7 +14,7 @@ from typing import Any
 
 import numpy as np
 
-from .params import Beam, RotbeamInputError, fd_for_emax, omega0_for_cmax
+from ..model.params import Beam, RotbeamInputError, fd_for_emax, omega0_for_cmax
 
 REF = "ref"
 
@@ -199,7 +199,7 @@ def check_config(config: dict[str, Any], schema: dict | None = None) -> None:
             Beam(**beam)
         except RotbeamInputError as exc:
             raise RotbeamInputError(f"fig7 beam {bid}: {exc}") from None
-    from .params import Effects
+    from ..model.params import Effects
     from .sweeps import numerics_from_config
 
     Effects.from_list(config["effects"])

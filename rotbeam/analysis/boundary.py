@@ -12,8 +12,8 @@ import numpy as np
 import pandas as pd
 from scipy.optimize import curve_fit
 
-from .criterion import check_threshold, critical_from_scan
-from .params import Beam
+from ..model.criterion import check_threshold, critical_from_scan
+from ..model.params import Beam
 
 
 def boundary_table(
@@ -99,7 +99,7 @@ def c_per_threshold(table: pd.DataFrame) -> pd.DataFrame:
     for th, sub in table.groupby("threshold"):
         root = fit_c(sub, "f_d_root")
         grid = fit_c(sub, "f_d_grid")
-        from .secondorder import c0_limit
+        from ..model.secondorder import c0_limit
 
         rows.append({
             "threshold": th, "c_root": root["c"], "c_root_stderr": root["c_stderr"],

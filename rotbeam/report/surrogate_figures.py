@@ -21,12 +21,11 @@ from collections.abc import Mapping, Sequence
 import numpy as np
 import pandas as pd
 
-from .boundary import boundary_table
-from .criterion import critical_from_scan
-from .modes import natural_frequencies_hz
-from .params import Beam, Dimensionless, Drive, Effects, RotbeamInputError, omega0_for_cmax
-from .plotting import ACCENT, DYN, GREY, QS, apply_style, figure, panel_label, save
-from .surrogate import (
+from ..analysis.boundary import boundary_table
+from ..model.criterion import critical_from_scan
+from ..model.modes import natural_frequencies_hz
+from ..model.params import Beam, Dimensionless, Drive, Effects, RotbeamInputError, omega0_for_cmax
+from ..model.surrogate import (
     analytical_boundary,
     analytical_boundary_exact,
     critical_frequency,
@@ -34,6 +33,7 @@ from .surrogate import (
     southwell_frequency_hz,
     steady_rms,
 )
+from .style import ACCENT, DYN, GREY, QS, apply_style, figure, panel_label, save
 
 # --- Southwell line vs exact frequencies -----------------------------------------------------
 

@@ -19,10 +19,9 @@ from typing import Any
 import numpy as np
 import yaml
 
-from .criterion import delta_rms, rms
-from .elastica import DiscreteElastica
-from .integrate import Numerics, SteadyState, steady_state
-from .params import (
+from ..model.criterion import delta_rms, rms
+from ..model.elastica import DiscreteElastica
+from ..model.params import (
     Beam,
     Dimensionless,
     Drive,
@@ -31,7 +30,8 @@ from .params import (
     check_model_range,
     drive_groups,
 )
-from .quasistatic import quasistatic_series
+from ..model.quasistatic import quasistatic_series
+from ..solve.steady import Numerics, SteadyState, steady_state
 
 
 class _Loader(yaml.SafeLoader):

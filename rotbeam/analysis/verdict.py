@@ -27,13 +27,13 @@ import time
 from dataclasses import dataclass
 from pathlib import Path
 
-from .criterion import check_threshold
-from .integrate import Numerics
-from .params import Beam, Drive, Effects, RotbeamInputError
-from .plotting import DYN, QS, figure, save
-from .scene import Scene, SceneResult, simulate
-from .secondorder import c0_root
-from .sweeps import resonance_frequency_hz
+from ..model.criterion import check_threshold
+from ..model.params import Beam, Drive, Effects, RotbeamInputError
+from ..model.secondorder import c0_root
+from ..report.style import DYN, QS, figure, save
+from ..simulate.scene import Scene, SceneResult, simulate
+from ..simulate.sweeps import resonance_frequency_hz
+from ..solve.steady import Numerics
 
 
 @dataclass(frozen=True)

@@ -31,11 +31,11 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from .elastica import DiscreteElastica, _check_N
-from .modes import dimensionless_frequencies, linear_forced_response
-from .params import Dimensionless, RotbeamInputError
+from ..model.elastica import DiscreteElastica, _check_N
+from ..model.modes import dimensionless_frequencies, linear_forced_response
+from ..model.params import Dimensionless, RotbeamInputError
+from ..model.quasistatic import quasistatic_series
 from .periodic import PeriodicResult, solve_periodic_adaptive
-from .quasistatic import quasistatic_series
 from .spectral import trig_interpolate
 
 METHODS = ("Radau", "BDF", "LSODA", "TRBDF2")

@@ -32,9 +32,9 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from .integrate import Numerics
-from .params import Beam, Dimensionless, Drive, Effects, RotbeamInputError
-from .scene import Scene, simulate
+from ..model.params import Beam, Dimensionless, Drive, Effects, RotbeamInputError
+from ..simulate.scene import Scene, simulate
+from ..solve.steady import Numerics
 
 #: (label, Omega_0 [rad/s], f_d [Hz]) on the reference beam (issue #5)
 SCENES: tuple[tuple[str, float, float], ...] = (
@@ -200,10 +200,10 @@ def baseline_run(plan: BenchPlan, omega0: float, f_d: float, N: int, rtol: float
     tolerance scipy's default 1e-6, relative tolerance `rtol` (the ladder)."""
     from scipy.integrate import solve_ivp
 
-    from .criterion import delta_rms, rms
-    from .elastica import DiscreteElastica
-    from .integrate import OutOfTime, first_order_rhs
-    from .scene import quasistatic_midspan
+    from ..model.criterion import delta_rms, rms
+    from ..model.elastica import DiscreteElastica
+    from ..simulate.scene import quasistatic_midspan
+    from ..solve.steady import OutOfTime, first_order_rhs
 
     t0 = time.perf_counter()
     dl = Dimensionless.from_physical(plan.beam, Drive(omega0, 1.0, f_d), Effects())
@@ -316,7 +316,7 @@ def run_benchmark(
 
 def surrogate_row(plan: BenchPlan, omega0: float, f_d: float, ref: dict) -> dict[str, Any]:
     """The one-mode surrogate: time and error against the converged reference."""
-    from .surrogate import steady_rms
+    from ..model.surrogate import steady_rms
 
     t0 = time.perf_counter()
     dl = Dimensionless.from_physical(plan.beam, Drive(omega0, 1.0, f_d), Effects())
@@ -372,7 +372,7 @@ def choose_default(runs: pd.DataFrame, accept: float) -> dict[str, Any]:
 def summary_markdown(
     runs: pd.DataFrame, refs: pd.DataFrame, plan: BenchPlan, header: Iterable[str] = ()
 ) -> str:
-    from .io import markdown_table
+    from ..report.io import markdown_table
 
     sp = speedups(runs, plan.target)
     wide = sp.pivot(index="curve", columns="scene", values="speedup")
@@ -409,7 +409,7 @@ def summary_markdown(
 
 def plot(runs: pd.DataFrame, refs: pd.DataFrame, plan: BenchPlan, pdf: str, png: str) -> None:
     """Error against wall time, log-log: one panel per scene (N = plan.N), one for the grid."""
-    from . import plotting
+    from ..report import style as plotting
 
     scenes = list(dict.fromkeys(runs.scene))
     ncols = 3
@@ -516,7 +516,7 @@ def write_outputs(runs: pd.DataFrame, refs: pd.DataFrame, plan: BenchPlan, stem:
     `stem`_references.csv; all written atomically."""
     import platform
 
-    from .io import write_csv, write_text
+    from ..report.io import write_csv, write_text
 
     header = [
         f"Machine: {platform.machine()}, {platform.processor() or '?'}, python "

@@ -9,9 +9,9 @@ import matplotlib
 import numpy as np
 import pandas as pd
 
-from .criterion import power_spectrum
-from .params import Beam, Drive
-from .plotting import ACCENT, DYN, GREY, QS, apply_style, figure, panel_label, plt, save
+from ..model.criterion import power_spectrum
+from ..model.params import Beam, Drive
+from .style import ACCENT, DYN, GREY, QS, apply_style, figure, panel_label, plt, save
 
 
 def fig1_drive(omega0: float, amplitude: float, f_d: float, pdf: str, png: str) -> None:
@@ -209,7 +209,7 @@ def figB8_convergence(lines: pd.DataFrame, pdf: str, png: str) -> None:
 
 def _scaled_x(row) -> float:
     """S_1 G a^2 C_max / E_n^2, the abscissa on which Eq. (scaled_analytical_sol) is universal."""
-    from .surrogate import southwell_coefficient
+    from ..model.surrogate import southwell_coefficient
 
     S1 = southwell_coefficient(row["hub_ratio"])
     return S1 * row["G"] * row["C_max"] / row["E_n"] ** 2
@@ -276,7 +276,7 @@ def fig7_collapse(boundary: pd.DataFrame, c: float, pdf: str, png: str) -> None:
 
 def figE10_c0(zeta_max: float, points: int, beam: Beam, pdf: str, png: str) -> None:
     """Fig. E.10: c_0 vs zeta for threshold 0.10, the reference beam's zeta marked."""
-    from .secondorder import c0_root
+    from ..model.secondorder import c0_root
 
     z = np.linspace(0.0, zeta_max, points)
     c0 = [c0_root(x, 0.10) for x in z]

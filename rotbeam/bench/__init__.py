@@ -1,0 +1,1 @@
+"""The work-precision benchmark: its plan, its runs and its report."""
