@@ -16,7 +16,9 @@ from typing import Any
 
 import numpy as np
 
-from .model.params import BETA1, C_MAX_LIMIT, Beam, RotbeamInputError
+from .config.errors import RotbeamInputError
+from .config.parameters import help_text, param
+from .model.params import BETA1, C_MAX_LIMIT, Beam
 
 EXIT_USAGE = 2
 
@@ -102,18 +104,20 @@ def _scene_flags(p: argparse.ArgumentParser, drive_frequency: bool) -> None:
     p.add_argument("--omega0", type=_finite, help="mean angular velocity Omega_0 [rad/s]")
     if drive_frequency:
         p.add_argument("--fd", type=_finite, help="drive frequency f_d [Hz]")
-    p.add_argument("--amplitude", type=_finite, help="velocity amplitude a [rad/s] (default 1)")
-    p.add_argument("--N", type=_int, help="grid intervals (default 40)")
-    p.add_argument("--R", type=_finite, help="axis to undeformed tip [m] (default 0.155)")
-    p.add_argument("--method", help="Radau (default), BDF, LSODA or TRBDF2")
-    p.add_argument("--rtol", type=_finite, help="time-stepper relative tolerance")
+    p.add_argument("--amplitude", type=_finite, help=help_text("drive", "amplitude"))
+    p.add_argument("--N", type=_int, help=help_text("numerics", "N"))
+    p.add_argument("--R", type=_finite, help=help_text("beam", "R"))
+    p.add_argument("--method", help=f"{help_text('numerics', 'method')}: "
+                   f"{', '.join(param('numerics', 'method').choices)}")  # fmt: skip
+    p.add_argument("--rtol", type=_finite, help=help_text("numerics", "rtol"))
     p.add_argument("--effects", help="comma list of effects switched on, e.g. centrifugal,euler")
     p.add_argument("--json", action="store_true", help="print one JSON object")
 
 
 def _scene_from_args(args: argparse.Namespace):
+    from .config.scenefile import load_scene_file, scene_sections
     from .model.params import Effects
-    from .simulate.scene import build_scene, load_scene_file, scene_sections
+    from .simulate.scene import build_scene
 
     spec = scene_sections(load_scene_file(args.scene) if args.scene else {})
     flags = {}  # scene key -> the flag that set it, named in an error about that key
@@ -171,7 +175,7 @@ def _write_series(path: str, series: dict[str, np.ndarray]) -> None:
 
 
 def _check_threshold_flag(value: float) -> None:
-    from .model.criterion import check_threshold
+    from .config.checks import check_threshold
 
     try:
         check_threshold(value)
@@ -284,7 +288,7 @@ def cmd_modes(args: argparse.Namespace) -> int:
 
 def cmd_bench(args: argparse.Namespace) -> int:
     from .bench.benchmark import plan_from_dict, run_benchmark, write_outputs
-    from .simulate.scene import load_yaml
+    from .config.scenefile import load_yaml
 
     spec: dict[str, Any] = {}
     if args.config:

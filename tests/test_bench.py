@@ -18,8 +18,8 @@ from rotbeam.bench.benchmark import (
 )
 from rotbeam.model.params import Beam, Drive, Effects
 from rotbeam.simulate.scene import Scene, build_scene, simulate
+from rotbeam.solve.numerics import Numerics
 from rotbeam.solve.periodic import solve_periodic
-from rotbeam.solve.steady import Numerics
 
 # the benchmark scenes (Omega_0 rad/s, f_d Hz); near resonance (5, 7) is the slow one
 SCENES = [(5.0, 2.0), (5.0, 7.0), (5.0, 15.0), (100.0, 5.0), (100.0, 30.0)]
@@ -139,7 +139,7 @@ def test_micro_benchmark_writes_every_output(tmp_path):
 
 def test_bad_plan_names_the_key():
     from rotbeam.bench.benchmark import plan_from_dict
-    from rotbeam.model.params import RotbeamInputError
+    from rotbeam.config.errors import RotbeamInputError
 
     with pytest.raises(RotbeamInputError, match="curves.*nope"):
         replace(BenchPlan(), curves=("nope",))
@@ -154,7 +154,7 @@ def test_bad_plan_names_the_key():
 )  # fmt: skip
 def test_malformed_plan_lists_name_the_key(spec, key):
     from rotbeam.bench.benchmark import plan_from_dict
-    from rotbeam.model.params import RotbeamInputError
+    from rotbeam.config.errors import RotbeamInputError
 
     with pytest.raises(RotbeamInputError, match=f"benchmark.{key} = .*must be"):
         plan_from_dict(spec)

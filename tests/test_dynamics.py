@@ -9,8 +9,9 @@ from rotbeam.model.elastica import DiscreteElastica, Grid
 from rotbeam.model.modes import natural_frequencies_hz
 from rotbeam.model.params import Beam, Dimensionless, Drive
 from rotbeam.simulate.scene import Scene, simulate
+from rotbeam.solve.numerics import Numerics
 from rotbeam.solve.periodic import solve_periodic, solve_periodic_adaptive
-from rotbeam.solve.steady import Numerics, steady_state
+from rotbeam.solve.steady import steady_state
 
 BEAM = Beam()
 

@@ -31,7 +31,7 @@ from rotbeam.model.elastica import DiscreteElastica, Grid
 from rotbeam.model.modes import linear_forced_response
 from rotbeam.model.params import Beam, Dimensionless, Drive, Effects, fd_for_emax, omega0_for_cmax
 from rotbeam.simulate.scene import Scene, SceneResult, quasistatic_midspan, simulate
-from rotbeam.solve.steady import Numerics
+from rotbeam.solve.numerics import Numerics
 
 try:
     from chain_model import ChainModel, chain_steady_rms

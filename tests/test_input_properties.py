@@ -7,8 +7,9 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from rotbeam.config.errors import RotbeamInputError
 from rotbeam.model.modes import natural_frequencies_hz
-from rotbeam.model.params import Beam, Drive, RotbeamInputError
+from rotbeam.model.params import Beam, Drive
 
 pos = st.floats(min_value=1e-3, max_value=1e3)
 KEYS = ["L", "h", "b", "E", "rho", "R", "gamma"]

@@ -4,7 +4,8 @@ import math
 
 import pytest
 
-from rotbeam.model.params import BETA1, Beam, Dimensionless, Drive, Effects, RotbeamInputError
+from rotbeam.config.errors import RotbeamInputError
+from rotbeam.model.params import BETA1, Beam, Dimensionless, Drive, Effects
 
 
 def test_reference_beam_groups():

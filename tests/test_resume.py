@@ -24,7 +24,7 @@ from rotbeam.analysis.boundary import boundary_table, c_per_threshold, fit_c
 from rotbeam.model.params import Beam
 from rotbeam.report.io import write_csv
 from rotbeam.simulate.sweeps import COLUMNS, scan_line
-from rotbeam.solve.steady import Numerics
+from rotbeam.solve.numerics import Numerics
 
 ROOT = Path(__file__).resolve().parents[1]
 REF_BEAM = dict(L=0.040, h=0.002, b=0.010, E=1.22e6, rho=1170.2, R=0.155, gamma=0.039)

@@ -19,7 +19,8 @@ from chain_model import chain_steady_rms  # noqa: E402
 
 from rotbeam.model.criterion import rms  # noqa: E402
 from rotbeam.model.params import Beam, Dimensionless, Drive  # noqa: E402
-from rotbeam.solve.steady import Numerics, steady_state  # noqa: E402
+from rotbeam.solve.numerics import Numerics
+from rotbeam.solve.steady import steady_state  # noqa: E402
 
 BEAM = Beam()
 

@@ -14,7 +14,8 @@ import pytest
 from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 
-from rotbeam.model.params import Beam, RotbeamInputError
+from rotbeam.config.errors import RotbeamInputError
+from rotbeam.model.params import Beam
 from rotbeam.model.secondorder import (
     PRINTED_C0_TABLE,
     biquadratic_residual,

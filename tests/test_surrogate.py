@@ -16,8 +16,9 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
+from rotbeam.config.errors import RotbeamInputError
 from rotbeam.model.modes import dimensionless_frequencies
-from rotbeam.model.params import BETA1, Beam, Dimensionless, Drive, Effects, RotbeamInputError
+from rotbeam.model.params import BETA1, Beam, Dimensionless, Drive, Effects
 from rotbeam.model.secondorder import c0_root, delta_rms_canonical
 from rotbeam.model.surrogate import (
     SurrogateModel,
@@ -31,7 +32,7 @@ from rotbeam.model.surrogate import (
     steady_rms,
 )
 from rotbeam.simulate.scene import Scene, simulate
-from rotbeam.solve.steady import Numerics
+from rotbeam.solve.numerics import Numerics
 
 BEAM = Beam()
 

@@ -17,6 +17,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
+from rotbeam.config.schema import merge_config
 from rotbeam.model.criterion import critical_from_scan
 from rotbeam.model.params import Beam, Dimensionless, Drive, Effects, drive_groups
 from rotbeam.model.surrogate import steady_rms
@@ -134,12 +135,15 @@ def test_surrogate_section_is_required_and_checked(workflow_copy, tmp_path):
     from snakemake.utils import validate
 
     schema = str(ROOT / "workflow/schemas/config.schema.yaml")
-    cfg = yaml.safe_load((ROOT / "config/quick.yaml").read_text())
+    cfg = merge_config(
+        yaml.safe_load((ROOT / "config/config.yaml").read_text()),
+        yaml.safe_load((ROOT / "config/quick.yaml").read_text()),
+    )
     validate(dict(cfg), schema=schema)
     with pytest.raises(Exception, match="surrogate"):
         validate({k: v for k, v in cfg.items() if k != "surrogate"}, schema=schema)
     bad = tmp_path / "bad.yaml"
     text = (workflow_copy / "config/quick.yaml").read_text()
-    bad.write_text(text.replace("  tolerance: 0.05", "  tolerance: 1.5"))
+    bad.write_text(text + "\nsurrogate: {tolerance: 1.5}\n")  # merged over config.yaml
     p = dry_run(workflow_copy, "--configfile", str(bad))
     assert p.returncode != 0 and "tolerance" in p.stdout + p.stderr

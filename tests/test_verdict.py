@@ -15,7 +15,7 @@ from rotbeam.model.params import Beam, Drive, Effects
 from rotbeam.model.secondorder import delta_rms_canonical
 from rotbeam.simulate.scene import Scene, simulate
 from rotbeam.simulate.sweeps import scan_line
-from rotbeam.solve.steady import Numerics
+from rotbeam.solve.numerics import Numerics
 
 NUM = Numerics(N=20)
 

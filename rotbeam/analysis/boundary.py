@@ -12,7 +12,8 @@ import numpy as np
 import pandas as pd
 from scipy.optimize import curve_fit
 
-from ..model.criterion import check_threshold, critical_from_scan
+from ..config.checks import check_threshold
+from ..model.criterion import critical_from_scan
 from ..model.params import Beam
 
 

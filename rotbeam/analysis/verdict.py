@@ -27,13 +27,14 @@ import time
 from dataclasses import dataclass
 from pathlib import Path
 
-from ..model.criterion import check_threshold
-from ..model.params import Beam, Drive, Effects, RotbeamInputError
+from ..config.checks import check_threshold
+from ..config.errors import RotbeamInputError
+from ..model.params import Beam, Drive, Effects
 from ..model.secondorder import c0_root
 from ..report.style import DYN, QS, figure, save
 from ..simulate.scene import Scene, SceneResult, simulate
 from ..simulate.sweeps import resonance_frequency_hz
-from ..solve.steady import Numerics
+from ..solve.numerics import Numerics
 
 
 @dataclass(frozen=True)

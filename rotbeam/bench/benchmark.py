@@ -32,9 +32,10 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from ..model.params import Beam, Dimensionless, Drive, Effects, RotbeamInputError
+from ..config.errors import RotbeamInputError
+from ..model.params import Beam, Dimensionless, Drive, Effects
 from ..simulate.scene import Scene, simulate
-from ..solve.steady import Numerics
+from ..solve.numerics import Numerics
 
 #: (label, Omega_0 [rad/s], f_d [Hz]) on the reference beam (issue #5)
 SCENES: tuple[tuple[str, float, float], ...] = (

@@ -8,7 +8,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import brentq
 
-from .params import RotbeamInputError
+from ..config.checks import check_threshold
 
 
 def rms(y: np.ndarray) -> float:
@@ -34,12 +34,6 @@ def power_spectrum(tau: np.ndarray, y: np.ndarray) -> tuple[np.ndarray, np.ndarr
     dt = float(tau[1] - tau[0])
     amp = np.abs(np.fft.rfft(y - y.mean())) * 2.0 / y.size
     return np.fft.rfftfreq(y.size, dt), amp
-
-
-def check_threshold(threshold: float) -> float:
-    if not isinstance(threshold, (int, float)) or not (0.0 < threshold < 1.0):
-        raise RotbeamInputError(f"threshold must be in (0, 1), got {threshold!r}")
-    return float(threshold)
 
 
 @dataclass

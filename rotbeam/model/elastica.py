@@ -48,19 +48,13 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.linalg import lu_factor, lu_solve
 
-from .params import Effects, RotbeamInputError
+from ..config.parameters import check_value
+from .params import Effects
 
-MIN_NODES = 3
 
-
-def _check_N(N: int) -> int:
-    if isinstance(N, bool) or not isinstance(N, (int, np.integer)):
-        raise RotbeamInputError(f"numerics.N must be an integer, got {N!r}")
-    if N < MIN_NODES:
-        raise RotbeamInputError(f"numerics.N must be >= {MIN_NODES}, got {N}")
-    if N > 2000:
-        raise RotbeamInputError(f"numerics.N must be <= 2000, got {N}")
-    return int(N)
+def check_N(N: int) -> int:
+    """The number of grid intervals, checked against the registry (numerics.N)."""
+    return check_value("numerics", "N", N)
 
 
 @dataclass(frozen=True)
@@ -78,7 +72,7 @@ class Grid:
 
     @classmethod
     def build(cls, N: int) -> Grid:
-        N = _check_N(N)
+        N = check_N(N)
         n = N - 1
         ds = 1.0 / N
         s = ds * np.arange(1, N + 1)

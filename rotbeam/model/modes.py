@@ -19,8 +19,9 @@ import math
 import numpy as np
 import scipy.linalg as sla
 
+from ..config.errors import RotbeamInputError
 from .elastica import DiscreteElastica, Grid
-from .params import Beam, Dimensionless, Effects, RotbeamInputError
+from .params import Beam, Dimensionless, Effects
 
 
 def _model(N: int, hub_ratio: float, softening: bool) -> DiscreteElastica:

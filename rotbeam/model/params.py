@@ -28,35 +28,12 @@ from __future__ import annotations
 import math
 from dataclasses import asdict, dataclass, field, fields
 
+from ..config.checks import check_finite, check_nonnegative, check_positive
+from ..config.errors import RotbeamInputError
+from ..config.parameters import check_fields, default
+
 #: Root of 1 + cos(b) cosh(b) = 0 (first cantilever mode).  The paper rounds it to 1.875.
 BETA1 = 1.8751040687119611
-
-
-class RotbeamInputError(ValueError):
-    """A user-supplied value is outside its allowed range; the message names value and range."""
-
-
-def _check_finite(name: str, value: object) -> float:
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
-        raise RotbeamInputError(f"{name} must be a number, got {value!r} ({type(value).__name__})")
-    value = float(value)
-    if not math.isfinite(value):
-        raise RotbeamInputError(f"{name} must be finite, got {value!r}")
-    return value
-
-
-def _check_positive(name: str, value: object) -> float:
-    value = _check_finite(name, value)
-    if value <= 0:
-        raise RotbeamInputError(f"{name} must be > 0, got {value!r}")
-    return value
-
-
-def _check_nonnegative(name: str, value: object) -> float:
-    value = _check_finite(name, value)
-    if value < 0:
-        raise RotbeamInputError(f"{name} must be >= 0, got {value!r}")
-    return value
 
 
 @dataclass(frozen=True)
@@ -68,18 +45,16 @@ class Beam:
     gamma = 0.039 N s/m^2 (App. B).
     """
 
-    L: float = 0.040  #: length [m]
-    h: float = 0.002  #: thickness (bending direction) [m]
-    b: float = 0.010  #: width [m]
-    E: float = 1.22e6  #: Young's modulus [Pa]
-    rho: float = 1170.2  #: density [kg/m^3]
-    R: float = 0.155  #: axis to undeformed tip [m]; the clamp sits at R_o = R - L
-    gamma: float = 0.039  #: viscous damping per unit length [N s / m^2]
+    L: float = default("beam", "L")  #: length [m]
+    h: float = default("beam", "h")  #: thickness (bending direction) [m]
+    b: float = default("beam", "b")  #: width [m]
+    E: float = default("beam", "E")  #: Young's modulus [Pa]
+    rho: float = default("beam", "rho")  #: density [kg/m^3]
+    R: float = default("beam", "R")  #: axis to undeformed tip [m]; the clamp sits at R_o = R - L
+    gamma: float = default("beam", "gamma")  #: viscous damping per unit length [N s / m^2]
 
     def __post_init__(self) -> None:
-        for name in ("L", "h", "b", "E", "rho", "R"):
-            object.__setattr__(self, name, _check_positive(f"beam.{name}", getattr(self, name)))
-        object.__setattr__(self, "gamma", _check_nonnegative("beam.gamma", self.gamma))
+        check_fields(self, "beam")
         if self.h >= self.L:
             raise RotbeamInputError(
                 f"beam.h must be < beam.L (a slender beam), got h={self.h!r} m, L={self.L!r} m"
@@ -173,14 +148,12 @@ class Beam:
 class Drive:
     """Harmonic angular velocity Omega(t) = Omega_0 + a sin(2 pi f_d t) [rad/s]."""
 
-    omega0: float = 5.0  #: mean angular velocity Omega_0 [rad/s]
-    amplitude: float = 1.0  #: velocity amplitude a [rad/s]
-    f_d: float = 7.0  #: drive frequency [Hz]
+    omega0: float = default("drive", "omega0")  #: mean angular velocity Omega_0 [rad/s]
+    amplitude: float = default("drive", "amplitude")  #: velocity amplitude a [rad/s]
+    f_d: float = default("drive", "f_d")  #: drive frequency [Hz]
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "omega0", _check_finite("drive.omega0", self.omega0))
-        object.__setattr__(self, "amplitude", _check_nonnegative("drive.amplitude", self.amplitude))
-        object.__setattr__(self, "f_d", _check_positive("drive.f_d", self.f_d))
+        check_fields(self, "drive")
 
     def omega(self, t: float) -> float:
         return self.omega0 + self.amplitude * math.sin(2.0 * math.pi * self.f_d * t)
@@ -197,17 +170,14 @@ class Effects:
     in-plane centrifugal softening, the delta C y term of Eq. (EOM2); it needs `centrifugal`.
     """
 
-    centrifugal: bool = True
-    softening: bool = True
-    euler: bool = True
-    coriolis: bool = False
-    damping: bool = True
+    centrifugal: bool = default("effects", "centrifugal")
+    softening: bool = default("effects", "softening")
+    euler: bool = default("effects", "euler")
+    coriolis: bool = default("effects", "coriolis")
+    damping: bool = default("effects", "damping")
 
     def __post_init__(self) -> None:
-        for f in fields(self):
-            v = getattr(self, f.name)
-            if not isinstance(v, bool):
-                raise RotbeamInputError(f"effects.{f.name} must be true or false, got {v!r}")
+        check_fields(self, "effects")
 
     @classmethod
     def from_list(cls, names: str | list[str]) -> Effects:
@@ -252,11 +222,11 @@ class Dimensionless:
     effects: Effects = field(default_factory=Effects)
 
     def __post_init__(self) -> None:
-        _check_nonnegative("hub_ratio", self.hub_ratio)
-        _check_nonnegative("eta", self.eta)
-        _check_finite("lam0", self.lam0)
-        _check_nonnegative("alpha", self.alpha)
-        _check_positive("omega", self.omega)
+        check_nonnegative("hub_ratio", self.hub_ratio)
+        check_nonnegative("eta", self.eta)
+        check_finite("lam0", self.lam0)
+        check_nonnegative("alpha", self.alpha)
+        check_positive("omega", self.omega)
 
     @classmethod
     def from_physical(
@@ -332,12 +302,12 @@ def check_model_range(beam: Beam, drive: Drive) -> None:
 
 def omega0_for_cmax(beam: Beam, c_max: float, amplitude: float = 1.0) -> float:
     """Omega_0 that gives the maximal centrifugal number C_max (inverse of Eq. max C num)."""
-    c_max = _check_positive("C_max", c_max)
+    c_max = check_positive("C_max", c_max)
     return math.sqrt(c_max / beam.G) - amplitude
 
 
 def fd_for_emax(beam: Beam, e_max: float, amplitude: float = 1.0) -> float:
     """Drive frequency that gives the maximal Euler number E_max (inverse of Eq. max E num)."""
-    e_max = _check_positive("E_max", e_max)
-    amplitude = _check_positive("drive.amplitude", amplitude)
+    e_max = check_positive("E_max", e_max)
+    amplitude = check_positive("drive.amplitude", amplitude)
     return e_max / (beam.G * amplitude * 2.0 * math.pi)

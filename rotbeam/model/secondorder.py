@@ -22,16 +22,9 @@ from typing import Any
 
 import numpy as np
 
-from .params import BETA1, Beam, RotbeamInputError
-
-
-def _check_threshold(threshold: float) -> float:
-    if isinstance(threshold, bool) or not isinstance(threshold, (int, float, np.floating)):
-        raise RotbeamInputError(f"threshold must be a number in (0, 1), got {threshold!r}")
-    t = float(threshold)
-    if not (0.0 < t < 1.0):
-        raise RotbeamInputError(f"threshold must be in (0, 1), got {threshold!r}")
-    return t
+from ..config.checks import check_threshold
+from ..config.errors import RotbeamInputError
+from .params import BETA1, Beam
 
 
 def _check_zeta(zeta: float) -> float:
@@ -64,7 +57,7 @@ def c0_root(zeta: float, threshold: float = 0.10) -> float:
     """Smallest positive root c0 of the biquadratic: the first frequency ratio f/f_n at which
     Delta RMS reaches `threshold`.  Raises if damping is so high that it never does."""
     z = _check_zeta(zeta)
-    t = _check_threshold(threshold)
+    t = check_threshold(threshold)
     B = 1.0 - 2.0 * z * z
     C = t * (2.0 - t)
     disc = B * B - C
@@ -82,7 +75,7 @@ def c0_root(zeta: float, threshold: float = 0.10) -> float:
 
 def c0_limit(threshold: float = 0.10) -> float:
     """Exact zeta -> 0 root of the biquadratic: c0 = sqrt(threshold) (see module docstring)."""
-    return math.sqrt(_check_threshold(threshold))
+    return math.sqrt(check_threshold(threshold))
 
 
 #: App. E, Table (c_0): printed c0 for zeta -> 0.

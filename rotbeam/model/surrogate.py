@@ -36,9 +36,11 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.linalg import solve_banded
 
-from .criterion import check_threshold, delta_rms, first_crossing
+from ..config.checks import check_threshold
+from ..config.errors import RotbeamInputError
+from .criterion import delta_rms, first_crossing
 from .modes import natural_frequencies_hz
-from .params import BETA1, Beam, Dimensionless, Drive, Effects, RotbeamInputError
+from .params import BETA1, Beam, Dimensionless, Drive, Effects
 
 #: Gauss-Legendre nodes on [0, 1]; the integrands are entire functions, 48 nodes reach round-off.
 _GL_NODES = 48

@@ -22,9 +22,10 @@ import numpy as np
 import pandas as pd
 
 from ..analysis.boundary import boundary_table
+from ..config.errors import RotbeamInputError
 from ..model.criterion import critical_from_scan
 from ..model.modes import natural_frequencies_hz
-from ..model.params import Beam, Dimensionless, Drive, Effects, RotbeamInputError, omega0_for_cmax
+from ..model.params import Beam, Dimensionless, Drive, Effects, omega0_for_cmax
 from ..model.surrogate import (
     analytical_boundary,
     analytical_boundary_exact,

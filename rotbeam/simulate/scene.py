@@ -1,63 +1,29 @@
 """One scene: a beam, a drive, the effects and the numerics; dynamic and quasi-static responses.
 
-A scene file is YAML with sections `beam`, `drive`, `effects`, `numerics` (mappings) whose keys
-are the fields of `Beam`, `Drive`, `Effects` and `Numerics`; unknown sections or keys, NaN, inf
-and booleans for numbers are errors.  Omitted keys take the paper's values, but for the drive's
+`build_scene` turns a scene spec (the sections of a scene file, rotbeam.config.scenefile) into a
+`Scene`; omitted keys take the registry's defaults (the paper's values), but for the drive's
 omega0 and f_d, which `rotbeam simulate` needs from the file or its flags.
 """
 
 from __future__ import annotations
 
 import math
-import re
 import time
 from collections.abc import Callable
-from dataclasses import dataclass, fields, replace
-from pathlib import Path
+from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
-import yaml
 
+from ..config.scenefile import scene_sections
 from ..model.criterion import delta_rms, rms
 from ..model.elastica import DiscreteElastica
-from ..model.params import (
-    Beam,
-    Dimensionless,
-    Drive,
-    Effects,
-    RotbeamInputError,
-    check_model_range,
-    drive_groups,
-)
+from ..model.params import Beam, Dimensionless, Drive, Effects, check_model_range, drive_groups
 from ..model.quasistatic import quasistatic_series
-from ..solve.steady import Numerics, SteadyState, steady_state
+from ..solve.numerics import Numerics
+from ..solve.steady import SteadyState, steady_state
 
-
-class _Loader(yaml.SafeLoader):
-    """SafeLoader that also reads 1e6 and 2.0e6 as floats (YAML 1.1 wants 1.0e+6)."""
-
-
-_Loader.add_implicit_resolver(
-    "tag:yaml.org,2002:float",
-    re.compile(
-        r"""^(?:[-+]?(?:[0-9][0-9_]*)\.[0-9_]*(?:[eE][-+]?[0-9]+)?
-        |[-+]?(?:[0-9][0-9_]*)(?:[eE][-+]?[0-9]+)
-        |\.[0-9_]+(?:[eE][-+]?[0-9]+)?
-        |[-+]?\.(?:inf|Inf|INF)
-        |\.(?:nan|NaN|NAN))$""",
-        re.X,
-    ),
-    list("-+0123456789."),
-)
-
-
-def load_yaml(text: str):
-    """YAML with scientific notation read as numbers."""
-    return yaml.load(text, Loader=_Loader)
-
-
-SECTIONS = {"beam": Beam, "drive": Drive, "effects": Effects, "numerics": Numerics}
+CLASSES = {"beam": Beam, "drive": Drive, "effects": Effects, "numerics": Numerics}
 
 
 @dataclass(frozen=True)
@@ -72,92 +38,13 @@ class Scene:
         return Dimensionless.from_physical(self.beam, self.drive, self.effects)
 
 
-def scene_sections(spec: Any) -> dict[str, dict[str, Any]]:
-    """The sections of a scene spec as fresh dicts; unknown sections or keys and sections that
-    are not mappings are errors naming the key, its value and what is allowed."""
-    if spec is None:
-        return {}
-    if not isinstance(spec, dict):
-        raise RotbeamInputError(
-            f"a scene must be a mapping of sections ({', '.join(SECTIONS)}), "
-            f"got {_show(spec)} ({type(spec).__name__})"
-        )
-    out = {}
-    for name, values in spec.items():
-        if name not in SECTIONS:
-            raise RotbeamInputError(
-                f"{name} = {_show(values)}: unknown scene section; allowed: {', '.join(SECTIONS)}"
-            )
-        values = {} if values is None else values
-        if not isinstance(values, dict):
-            raise RotbeamInputError(
-                f"{name} = {_show(values)}: a scene section must be a mapping of keys, "
-                f"e.g. {name}: {{{next(iter(_fields(name)))}: ...}}; got {type(values).__name__}"
-            )
-        for key, value in values.items():
-            if key not in _fields(name):
-                raise RotbeamInputError(
-                    f"{name}.{key} = {_show(value)}: unknown key; allowed in {name}: "
-                    f"{', '.join(_fields(name))}"
-                )
-        out[name] = dict(values)
-    return out
-
-
-def _fields(section: str) -> list[str]:
-    return [f.name for f in fields(SECTIONS[section])]
-
-
-def _show(value: Any, width: int = 60) -> str:
-    text = repr(value)
-    return text if len(text) <= width else text[: width - 3] + "..."
-
-
 def build_scene(spec: dict[str, Any] | None = None) -> Scene:
-    """Scene from a nested dict like the YAML file; names the offending key on error."""
+    """Scene from a nested dict like the YAML file (sections checked by
+    rotbeam.config.scenefile, values by the classes); names the offending key on error."""
     sections = scene_sections(spec)
-    for name, values in sections.items():
-        defaults = {f.name: f.default for f in fields(SECTIONS[name])}
-        for key, value in values.items():
-            if isinstance(value, float) and not math.isfinite(value):
-                raise RotbeamInputError(f"{name}.{key} must be finite, got {value!r}")
-            if isinstance(value, bool) and not isinstance(defaults[key], bool):
-                kind = "an integer" if isinstance(defaults[key], int) else "a number"
-                raise RotbeamInputError(f"{name}.{key} must be {kind}, got {value!r} (bool)")
-    parts = {}
-    for name, cls in SECTIONS.items():
-        try:
-            parts[name] = cls(**sections.get(name, {}))
-        except TypeError as exc:  # pragma: no cover - guarded by the key check above
-            raise RotbeamInputError(f"{name}: {exc}") from None
-    scene = Scene(**parts)
+    scene = Scene(**{name: cls(**sections.get(name, {})) for name, cls in CLASSES.items()})
     check_model_range(scene.beam, scene.drive)
     return scene
-
-
-def load_scene_file(path: str | Path) -> dict[str, Any]:
-    path = Path(path)
-    if not path.is_file():
-        raise RotbeamInputError(f"scene file {str(path)!r} does not exist")
-    try:
-        data = load_yaml(path.read_text())
-    except yaml.YAMLError as exc:
-        mark = getattr(exc, "problem_mark", None)
-        where = f" (line {mark.line + 1}, column {mark.column + 1})" if mark else ""
-        what = getattr(exc, "problem", None) or str(exc)
-        raise RotbeamInputError(
-            " ".join(f"scene file {str(path)!r} is not valid YAML: {what}{where}".split())
-        ) from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise RotbeamInputError(f"scene file {str(path)!r} cannot be read: {exc}") from None
-    if data is None:
-        return {}
-    if not isinstance(data, dict):
-        raise RotbeamInputError(
-            f"scene file {str(path)!r} must hold a mapping of sections ({', '.join(SECTIONS)}), "
-            f"got {_show(data)} ({type(data).__name__})"
-        )
-    return data
 
 
 @dataclass

@@ -14,13 +14,20 @@ from typing import Any
 
 import numpy as np
 
-from ..model.params import Beam, RotbeamInputError, fd_for_emax, omega0_for_cmax
+from ..config.errors import RotbeamInputError
+from ..config.scenefile import load_yaml
+from ..config.schema import (
+    coerce_numbers,
+    describe_allowed,
+    g,
+    json_numbers,
+    key_name,
+    schema_error_message,
+    subschema,
+)
+from ..model.params import Beam, fd_for_emax, omega0_for_cmax
 
 REF = "ref"
-
-
-def g(x: float) -> str:
-    return format(float(x), "g")
 
 
 def beam_id(beam: dict[str, float]) -> str:
@@ -41,135 +48,16 @@ def fig7_beams(config: dict[str, Any]) -> dict[str, dict[str, float]]:
     return out
 
 
-def _key(path: Any) -> str:
-    """Dotted key of a config path: ('fig4', 'omega0', 1) -> 'fig4.omega0[1]'."""
-    out = ""
-    for p in path:
-        out += f"[{p}]" if isinstance(p, int) else (f".{p}" if out else str(p))
-    return out or "the config"
-
-
-def _show(value: Any, width: int = 60) -> str:
-    text = repr(value)
-    return text if len(text) <= width else text[: width - 3] + "..."
-
-
-def _resolve(schema: dict, root: dict) -> dict:
-    """Follow local `$ref`s ("#/definitions/...") of the config schema."""
-    while isinstance(schema, dict) and "$ref" in schema:
-        node: Any = root
-        for part in schema["$ref"].lstrip("#/").split("/"):
-            node = node[part]
-        schema = {**node, **{k: v for k, v in schema.items() if k != "$ref"}}
-    return schema
-
-
-def _subschema(root: dict, path: Any) -> dict | None:
-    """The schema of the value at `path` (None where the schema says nothing)."""
-    node = _resolve(root, root)
-    for p in path:
-        if isinstance(p, int):
-            prefix = node.get("prefixItems", [])
-            node = prefix[p] if p < len(prefix) else node.get("items")
-        else:
-            node = node.get("properties", {}).get(p)
-        if not isinstance(node, dict):
-            return None
-        node = _resolve(node, root)
-    return node
-
-
-def describe_allowed(schema: dict | None, root: dict | None = None) -> str:
-    """What a JSON-schema node allows, in words: 'a finite number in (0, 1)'."""
-    if not schema:
-        return "a finite number"
-    s = _resolve(schema, root or {})
-    if "enum" in s:
-        return "one of " + ", ".join(map(str, s["enum"]))
-    t = s.get("type")
-    if t == "boolean":
-        return "true or false"
-    if t in ("number", "integer"):
-        noun = "a finite number" if t == "number" else "an integer"
-        lo = ("(", s["exclusiveMinimum"]) if "exclusiveMinimum" in s else None
-        lo = lo or (("[", s["minimum"]) if "minimum" in s else None)
-        hi = (")", s["exclusiveMaximum"]) if "exclusiveMaximum" in s else None
-        hi = hi or (("]", s["maximum"]) if "maximum" in s else None)
-        if lo and hi:
-            return f"{noun} in {lo[0]}{g(lo[1])}, {g(hi[1])}{hi[0]}"
-        if lo:
-            return f"{noun} {'>' if lo[0] == '(' else '>='} {g(lo[1])}"
-        if hi:
-            return f"{noun} {'<' if hi[0] == ')' else '<='} {g(hi[1])}"
-        return noun
-    if t == "array":
-        n_min, n_max = s.get("minItems", 0), s.get("maxItems")
-        what = "distinct values" if s.get("uniqueItems") else "values"
-        if n_max is not None and n_max == n_min:
-            head = f"a list of exactly {n_min} {what}"
-        elif n_min > 1:
-            head = f"a list of {n_min} or more {what}"
-        else:
-            head = f"a{' non-empty' if n_min == 1 else ''} list of {what}"
-        if "prefixItems" in s:
-            parts = ", ".join(describe_allowed(x, root) for x in s["prefixItems"])
-            return f"{head} [{parts}]"
-        if "items" in s:
-            return f"{head}, each {describe_allowed(s['items'], root)}"
-        return head
-    if t == "object":
-        return "a mapping with keys " + ", ".join(s.get("properties", {}))
-    if t == "string":
-        return "a string"
-    return "valid"
-
-
-def schema_error_message(error: Any, root: dict) -> str:
-    """One line naming key, value and what is allowed, from a jsonschema ValidationError."""
-    path = list(error.absolute_path)
-    kind, value = error.validator, error.instance
-    schema = _resolve(error.schema, root)
-    if kind == "required":
-        missing = [k for k in error.validator_value if k not in value]
-        k = missing[0] if missing else "?"
-        return (
-            f"{_key([*path, k])} is missing: it must be "
-            f"{describe_allowed(schema.get('properties', {}).get(k), root)}"
-        )
-    if kind == "additionalProperties":
-        allowed = list(schema.get("properties", {}))
-        unknown = [k for k in value if k not in allowed]
-        k = unknown[0] if unknown else "?"
-        where = f"in {_key(path)}" if path else "at the top level"
-        return (
-            f"{_key([*path, k])} = {_show(value.get(k))}: unknown key; allowed {where}: "
-            + ", ".join(allowed)
-        )
-    return f"{_key(path)} = {_show(value)}: must be {describe_allowed(schema, root)}"
-
-
-def _numbers(value: Any, path: tuple = ()):
-    """Every (path, number) of a nested config."""
-    if isinstance(value, dict):
-        for k, v in value.items():
-            yield from _numbers(v, (*path, k))
-    elif isinstance(value, (list, tuple)):
-        for i, v in enumerate(value):
-            yield from _numbers(v, (*path, i))
-    elif isinstance(value, (int, float)) and not isinstance(value, bool):
-        yield path, value
-
-
 def check_config(config: dict[str, Any], schema: dict | None = None) -> None:
     """Checks the JSON schema cannot express (NaN and inf pass its bounds, ranges, physics).
 
     Every message is one line naming the key, its value and what is allowed; `schema` (the
     workflow's config schema) words the allowed range of a non-finite value.
     """
-    for path, v in _numbers(config):
+    for path, v in json_numbers(config):
         if not math.isfinite(v):
-            allowed = describe_allowed(_subschema(schema, path) if schema else None, schema)
-            raise RotbeamInputError(f"{_key(path)} = {v!r}: must be {allowed}")
+            allowed = describe_allowed(subschema(schema, path) if schema else None, schema)
+            raise RotbeamInputError(f"{key_name(path)} = {v!r}: must be {allowed}")
     try:
         Beam(**config["beam"])
     except TypeError as exc:
@@ -215,7 +103,6 @@ def validate_config(
     schema (`schema_validate`: snakemake.utils.validate in the workflow, jsonschema by default),
     then `check_config`.  Returns the coerced config; raises RotbeamInputError with one line
     naming the key, the value and what is allowed."""
-    from .scene import load_yaml
 
     root = load_yaml(Path(schema_path).read_text())
     config = coerce_numbers(config)
@@ -322,22 +209,3 @@ def scan_frequencies(spec: dict[str, Any]) -> list[float]:
         Beam(**spec["beam"]), spec["omega0"], s["lo"], s["hi"], s["points"], spec["amplitude"]
     )
     return [float(x) for x in f if math.isfinite(x)]
-
-
-def coerce_numbers(value: Any) -> Any:
-    """Numbers given as strings (``--config thresholds=[0.05,0.2]`` arrives as ['0.05', '0.2'])
-    become numbers; everything else is left for the schema to judge."""
-    if isinstance(value, dict):
-        return {k: coerce_numbers(v) for k, v in value.items()}
-    if isinstance(value, list):
-        return [coerce_numbers(v) for v in value]
-    if isinstance(value, str):
-        text = value.strip()
-        for cast in (int, float):
-            try:
-                return cast(text)
-            except ValueError:
-                pass
-        if text.lower() in ("true", "false"):
-            return text.lower() == "true"
-    return value

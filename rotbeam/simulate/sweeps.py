@@ -11,9 +11,10 @@ from dataclasses import replace
 import numpy as np
 import pandas as pd
 
+from ..config.errors import RotbeamInputError
 from ..model.modes import natural_frequencies_hz
-from ..model.params import Beam, Drive, Effects, RotbeamInputError, drive_groups
-from ..solve.steady import Numerics
+from ..model.params import Beam, Drive, Effects, drive_groups
+from ..solve.numerics import Numerics
 from .scene import Scene, simulate
 
 COLUMNS = [

@@ -31,87 +31,17 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from ..model.elastica import DiscreteElastica, _check_N
+from ..model.elastica import DiscreteElastica
 from ..model.modes import dimensionless_frequencies, linear_forced_response
-from ..model.params import Dimensionless, RotbeamInputError
+from ..model.params import Dimensionless
 from ..model.quasistatic import quasistatic_series
+from .numerics import Numerics
 from .periodic import PeriodicResult, solve_periodic_adaptive
 from .spectral import trig_interpolate
-
-METHODS = ("Radau", "BDF", "LSODA", "TRBDF2")
-JACOBIANS = ("exact", "fd")
 
 
 class OutOfTime(Exception):
     """Raised inside the right-hand side when the wall-time budget is spent."""
-
-
-STARTS = ("periodic", "linear", "quasistatic", "rest")
-
-
-@dataclass(frozen=True)
-class Numerics:
-    """Everything numerical that changes a result."""
-
-    N: int = 40  #: grid intervals
-    method: str = "Radau"  #: scipy solve_ivp method
-    rtol: float = 1e-5  #: time stepper's relative tolerance (transients; see `steady_state`)
-    ss_tol: float = 1e-3  #: steady-state tolerance (relative remaining transient)
-    rms_periods: int = 1  #: whole drive periods in the RMS window (one is exact when periodic)
-    samples_per_period: int = 64
-    max_periods: int = 2000  #: give up after this many periods
-    max_tau: float = 2000.0  #: ... or after this much dimensionless time
-    max_seconds: float = 900.0  #: ... or after this much wall time (then: no steady state)
-    start: str = "periodic"  #: initial state: "periodic", "linear", "quasistatic" or "rest"
-    tail_tol: float = 1e-3  #: harmonic tail of the periodic (collocation) start
-    integrate: bool = True  #: verify the collocation orbit by time stepping (False: trust it)
-    jacobian: str = "exact"  #: "exact" (analytic) or "fd" (the stepper's finite differences)
-    extrapolate: bool = False  #: Richardson-extrapolate RMS from N and N // 2 (rotbeam.scene)
-
-    def __post_init__(self) -> None:
-        _check_N(self.N)
-        if self.method not in METHODS:
-            raise RotbeamInputError(
-                f"numerics.method must be one of {METHODS}, got {self.method!r}"
-            )
-        for name in ("rtol", "ss_tol", "tail_tol", "max_seconds", "max_tau"):
-            v = getattr(self, name)
-            if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
-                raise RotbeamInputError(f"numerics.{name} must be a finite number, got {v!r}")
-        if self.jacobian not in JACOBIANS:
-            raise RotbeamInputError(
-                f"numerics.jacobian must be one of {JACOBIANS}, got {self.jacobian!r}"
-            )
-        if self.start not in STARTS:
-            raise RotbeamInputError(f"numerics.start must be one of {STARTS}, got {self.start!r}")
-        for name, lo, hi in (("rtol", 1e-13, 1e-1), ("ss_tol", 1e-10, 0.5)):
-            v = getattr(self, name)
-            if not isinstance(v, (int, float)) or not (lo <= v <= hi):
-                raise RotbeamInputError(f"numerics.{name} must be in [{lo}, {hi}], got {v!r}")
-        for name, lo in (("rms_periods", 1), ("samples_per_period", 8), ("max_periods", 2)):
-            v = getattr(self, name)
-            if isinstance(v, bool) or not isinstance(v, int) or v < lo:
-                raise RotbeamInputError(f"numerics.{name} must be an integer >= {lo}, got {v!r}")
-        if not isinstance(self.extrapolate, bool):
-            raise RotbeamInputError(
-                f"numerics.extrapolate must be true or false, got {self.extrapolate!r}"
-            )
-        if self.extrapolate and self.N < 6:
-            raise RotbeamInputError(
-                f"numerics.N must be >= 6 with extrapolate (coarse grid N // 2), got {self.N}"
-            )
-        if not isinstance(self.integrate, bool):
-            raise RotbeamInputError(
-                f"numerics.integrate must be true or false, got {self.integrate!r}"
-            )
-        if not isinstance(self.tail_tol, (int, float)) or not (1e-12 <= self.tail_tol <= 0.1):
-            raise RotbeamInputError(
-                f"numerics.tail_tol must be in [1e-12, 0.1], got {self.tail_tol!r}"
-            )
-        if not isinstance(self.max_seconds, (int, float)) or not (self.max_seconds > 0):
-            raise RotbeamInputError(f"numerics.max_seconds must be > 0, got {self.max_seconds!r}")
-        if not isinstance(self.max_tau, (int, float)) or not (self.max_tau > 0):
-            raise RotbeamInputError(f"numerics.max_tau must be > 0, got {self.max_tau!r}")
 
 
 @dataclass

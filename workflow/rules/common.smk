@@ -6,7 +6,7 @@ from snakemake.utils import validate
 
 import rotbeam
 
-from rotbeam.model.params import RotbeamInputError
+from rotbeam.config.errors import RotbeamInputError
 from rotbeam.simulate.studies import (
     REF,
     fig7_beams,

@@ -1,0 +1,44 @@
+"""Number checks shared by every room: each returns the checked value or raises
+`RotbeamInputError` with one line naming the key, the value and what is allowed."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .errors import RotbeamInputError
+
+
+def check_finite(name: str, value: object) -> float:
+    """A finite real number (bools are not numbers here)."""
+    if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
+        raise RotbeamInputError(f"{name} must be a number, got {value!r} ({type(value).__name__})")
+    value = float(value)
+    if not math.isfinite(value):
+        raise RotbeamInputError(f"{name} must be finite, got {value!r}")
+    return value
+
+
+def check_positive(name: str, value: object) -> float:
+    value = check_finite(name, value)
+    if value <= 0:
+        raise RotbeamInputError(f"{name} must be > 0, got {value!r}")
+    return value
+
+
+def check_nonnegative(name: str, value: object) -> float:
+    value = check_finite(name, value)
+    if value < 0:
+        raise RotbeamInputError(f"{name} must be >= 0, got {value!r}")
+    return value
+
+
+def check_threshold(threshold: object, name: str = "threshold") -> float:
+    """A Delta RMS threshold: a number in (0, 1)."""
+    if isinstance(threshold, bool) or not isinstance(threshold, (int, float, np.floating)):
+        raise RotbeamInputError(f"{name} must be a number in (0, 1), got {threshold!r}")
+    t = float(threshold)
+    if not (0.0 < t < 1.0):
+        raise RotbeamInputError(f"{name} must be in (0, 1), got {threshold!r}")
+    return t

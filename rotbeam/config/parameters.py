@@ -1,0 +1,177 @@
+"""The parameter registry: type, default, range, unit and help of every scene field, in one place.
+
+`Beam`, `Drive`, `Effects` (rotbeam.model.params) and `Numerics` (rotbeam.solve.numerics) take
+their defaults from here and check their fields with `check_fields`; scene files and CLI flags
+are checked against the same entries, and `tests/test_parameters.py` holds the workflow's JSON
+schema (workflow/schemas/config.schema.yaml) to them.  Cross-field rules (h < L, R > L, N >= 6
+with extrapolation) stay with the class that owns both fields.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from .errors import RotbeamInputError
+
+
+@dataclass(frozen=True)
+class Param:
+    """One field: `kind` is "real", "int", "bool" or "choice"; bounds are inclusive unless
+    `lo_open` / `hi_open` (None: unbounded)."""
+
+    kind: str
+    default: Any
+    help: str
+    unit: str = ""
+    lo: float | None = None
+    hi: float | None = None
+    lo_open: bool = False
+    choices: tuple[str, ...] = ()
+
+
+def _real(default, help, unit="", lo=None, hi=None, lo_open=False) -> Param:
+    return Param("real", default, help, unit, lo, hi, lo_open)
+
+
+def _int(default, help, lo=None, hi=None) -> Param:
+    return Param("int", default, help, "", lo, hi)
+
+
+def _bool(default, help) -> Param:
+    return Param("bool", default, help)
+
+
+def _choice(default, help, *choices) -> Param:
+    return Param("choice", default, help, choices=choices)
+
+
+#: Every section of a scene and its fields, in the order of the dataclasses.
+SECTIONS: dict[str, dict[str, Param]] = {
+    "beam": {
+        "L": _real(0.040, "length", "m", 0, lo_open=True),
+        "h": _real(0.002, "thickness (bending direction), < L", "m", 0, lo_open=True),
+        "b": _real(0.010, "width", "m", 0, lo_open=True),
+        "E": _real(1.22e6, "Young's modulus", "Pa", 0, lo_open=True),
+        "rho": _real(1170.2, "density", "kg/m^3", 0, lo_open=True),
+        # R is not printed in the paper; 0.155 m follows from the C and E ranges of Sec. 5
+        "R": _real(0.155, "axis to undeformed tip, > L (clamp at R - L)", "m", 0, lo_open=True),
+        "gamma": _real(0.039, "viscous damping per unit length (App. B)", "N s/m^2", 0),
+    },
+    "drive": {
+        "omega0": _real(5.0, "mean angular velocity Omega_0", "rad/s"),
+        "amplitude": _real(1.0, "velocity amplitude a", "rad/s", 0),
+        "f_d": _real(7.0, "drive frequency", "Hz", 0, lo_open=True),
+    },
+    "effects": {
+        "centrifugal": _bool(True, "centrifugal load C (1 - delta + delta x)"),
+        "softening": _bool(True, "in-plane centrifugal softening delta C y (needs centrifugal)"),
+        "euler": _bool(True, "Euler load of the angular acceleration"),
+        "coriolis": _bool(False, "Coriolis load (negligible, Sec. 2; off in the paper)"),
+        "damping": _bool(True, "viscous damping gamma"),
+    },
+    "numerics": {
+        "N": _int(40, "grid intervals", 3, 2000),
+        "method": _choice("Radau", "time stepper", "Radau", "BDF", "LSODA", "TRBDF2"),
+        "rtol": _real(1e-5, "time stepper's relative tolerance (transients)", "", 1e-13, 0.1),
+        "ss_tol": _real(
+            1e-3, "steady-state tolerance (relative remaining transient)", "", 1e-10, 0.5
+        ),  # fmt: skip
+        "rms_periods": _int(1, "whole drive periods in the RMS window", 1),
+        "samples_per_period": _int(64, "samples of y_m per drive period", 8),
+        "max_periods": _int(2000, "give up after this many periods", 2),
+        "max_tau": _real(2000.0, "... or after this much dimensionless time", "", 0, lo_open=True),
+        "max_seconds": _real(
+            900.0, "... or after this much wall time (no steady state)", "s", 0, lo_open=True
+        ),  # fmt: skip
+        "start": _choice("periodic", "initial state", "periodic", "linear", "quasistatic", "rest"),
+        "tail_tol": _real(1e-3, "harmonic tail of the collocated orbit", "", 1e-12, 0.1),
+        "integrate": _bool(True, "verify the collocated orbit by time stepping"),
+        "jacobian": _choice("exact", "Jacobian of the stepper", "exact", "fd"),
+        "extrapolate": _bool(False, "Richardson-extrapolate RMS from N and N // 2"),
+    },
+}
+
+
+def param(section: str, name: str) -> Param:
+    return SECTIONS[section][name]
+
+
+def default(section: str, name: str) -> Any:
+    """The default of one field (what the dataclasses use)."""
+    return SECTIONS[section][name].default
+
+
+def _fmt(x: float) -> str:
+    return f"{x:g}"
+
+
+def allowed(p: Param) -> str:
+    """What a field accepts, in words (for error messages and help)."""
+    if p.kind == "bool":
+        return "true or false"
+    if p.kind == "choice":
+        return f"one of {p.choices}"
+    what = "an integer" if p.kind == "int" else "a finite number"
+    bounds = _bounds(p)
+    return f"{what} {bounds}" if bounds else what
+
+
+def _bounds(p: Param) -> str:
+    """ "in [lo, hi]", "> lo" or "<= hi": the words the schema messages use too."""
+    if p.lo is not None and p.hi is not None:
+        return f"in {'(' if p.lo_open else '['}{_fmt(p.lo)}, {_fmt(p.hi)}]"
+    if p.lo is not None:
+        return f"{'>' if p.lo_open else '>='} {_fmt(p.lo)}"
+    return f"<= {_fmt(p.hi)}" if p.hi is not None else ""
+
+
+def check_value(section: str, name: str, value: Any) -> Any:
+    """`value` checked against the registry: returned as the field's type, or one line naming
+    `section.name`, the value and what is allowed."""
+    p = SECTIONS[section][name]
+    key = f"{section}.{name}"
+    if p.kind == "bool":
+        if not isinstance(value, (bool, np.bool_)):
+            raise RotbeamInputError(f"{key} must be true or false, got {value!r}")
+        return bool(value)
+    if p.kind == "choice":
+        if value not in p.choices:
+            raise RotbeamInputError(f"{key} must be one of {p.choices}, got {value!r}")
+        return value
+    if p.kind == "int":
+        if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer)):
+            raise RotbeamInputError(f"{key} must be an integer, got {value!r}")
+        value = int(value)
+    else:
+        if isinstance(value, (bool, np.bool_)) or not isinstance(
+            value, (int, float, np.integer, np.floating)
+        ):
+            raise RotbeamInputError(
+                f"{key} must be a number, got {value!r} ({type(value).__name__})"
+            )
+        value = float(value)
+        if not math.isfinite(value):
+            raise RotbeamInputError(f"{key} must be finite, got {value!r}")
+    too_low = p.lo is not None and (value <= p.lo if p.lo_open else value < p.lo)
+    too_high = p.hi is not None and value > p.hi
+    if too_low or too_high:
+        raise RotbeamInputError(f"{key} must be {_bounds(p)}, got {value!r}")
+    return value
+
+
+def check_fields(obj: object, section: str) -> None:
+    """Check every registry field of a frozen dataclass instance in place."""
+    for name in SECTIONS[section]:
+        object.__setattr__(obj, name, check_value(section, name, getattr(obj, name)))
+
+
+def help_text(section: str, name: str) -> str:
+    """`help [unit] (default ...)` for a CLI flag."""
+    p = SECTIONS[section][name]
+    unit = f" [{p.unit}]" if p.unit else ""
+    shown = f"{p.default:g}" if p.kind in ("real", "int") else str(p.default)
+    return f"{p.help}{unit} (default {shown})"

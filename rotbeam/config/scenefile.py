@@ -1,0 +1,103 @@
+"""Scene files: YAML with sections `beam`, `drive`, `effects`, `numerics` whose keys are the
+registry's fields (rotbeam.config.parameters); unknown sections or keys are errors naming the key,
+its value and what is allowed.  The objects are built in rotbeam.simulate.scene."""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+from typing import Any
+
+import yaml
+
+from .errors import RotbeamInputError
+from .parameters import SECTIONS
+
+
+class _Loader(yaml.SafeLoader):
+    """SafeLoader that also reads 1e6 and 2.0e6 as floats (YAML 1.1 wants 1.0e+6)."""
+
+
+_Loader.add_implicit_resolver(
+    "tag:yaml.org,2002:float",
+    re.compile(
+        r"""^(?:[-+]?(?:[0-9][0-9_]*)\.[0-9_]*(?:[eE][-+]?[0-9]+)?
+        |[-+]?(?:[0-9][0-9_]*)(?:[eE][-+]?[0-9]+)
+        |\.[0-9_]+(?:[eE][-+]?[0-9]+)?
+        |[-+]?\.(?:inf|Inf|INF)
+        |\.(?:nan|NaN|NAN))$""",
+        re.X,
+    ),
+    list("-+0123456789."),
+)
+
+
+def load_yaml(text: str):
+    """YAML with scientific notation read as numbers."""
+    return yaml.load(text, Loader=_Loader)
+
+
+def scene_sections(spec: Any) -> dict[str, dict[str, Any]]:
+    """The sections of a scene spec as fresh dicts; unknown sections or keys and sections that
+    are not mappings are errors naming the key, its value and what is allowed."""
+    if spec is None:
+        return {}
+    if not isinstance(spec, dict):
+        raise RotbeamInputError(
+            f"a scene must be a mapping of sections ({', '.join(SECTIONS)}), "
+            f"got {_show(spec)} ({type(spec).__name__})"
+        )
+    out = {}
+    for name, values in spec.items():
+        if name not in SECTIONS:
+            raise RotbeamInputError(
+                f"{name} = {_show(values)}: unknown scene section; allowed: {', '.join(SECTIONS)}"
+            )
+        values = {} if values is None else values
+        if not isinstance(values, dict):
+            raise RotbeamInputError(
+                f"{name} = {_show(values)}: a scene section must be a mapping of keys, "
+                f"e.g. {name}: {{{next(iter(_fields(name)))}: ...}}; got {type(values).__name__}"
+            )
+        for key, value in values.items():
+            if key not in _fields(name):
+                raise RotbeamInputError(
+                    f"{name}.{key} = {_show(value)}: unknown key; allowed in {name}: "
+                    f"{', '.join(_fields(name))}"
+                )
+        out[name] = dict(values)
+    return out
+
+
+def _fields(section: str) -> list[str]:
+    return list(SECTIONS[section])
+
+
+def _show(value: Any, width: int = 60) -> str:
+    text = repr(value)
+    return text if len(text) <= width else text[: width - 3] + "..."
+
+
+def load_scene_file(path: str | Path) -> dict[str, Any]:
+    path = Path(path)
+    if not path.is_file():
+        raise RotbeamInputError(f"scene file {str(path)!r} does not exist")
+    try:
+        data = load_yaml(path.read_text())
+    except yaml.YAMLError as exc:
+        mark = getattr(exc, "problem_mark", None)
+        where = f" (line {mark.line + 1}, column {mark.column + 1})" if mark else ""
+        what = getattr(exc, "problem", None) or str(exc)
+        raise RotbeamInputError(
+            " ".join(f"scene file {str(path)!r} is not valid YAML: {what}{where}".split())
+        ) from None
+    except (OSError, UnicodeDecodeError) as exc:
+        raise RotbeamInputError(f"scene file {str(path)!r} cannot be read: {exc}") from None
+    if data is None:
+        return {}
+    if not isinstance(data, dict):
+        raise RotbeamInputError(
+            f"scene file {str(path)!r} must hold a mapping of sections ({', '.join(SECTIONS)}), "
+            f"got {_show(data)} ({type(data).__name__})"
+        )
+    return data
