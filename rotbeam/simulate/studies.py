@@ -34,17 +34,98 @@ def beam_id(beam: dict[str, float]) -> str:
     return f"E{g(beam['E'])}_L{g(beam['L'])}_hL{g(beam['h'] / beam['L'])}"
 
 
+DAMPING = ("gamma", "eta", "zeta")  #: what a grid beam keeps of the reference beam's damping
+GEOMETRY = ("R", "delta")  #: what it keeps of the reference beam's position: R or L/R
+
+
+def grid_beam(
+    ref: dict[str, float], E: float, L: float, h_over_L: float,
+    damping: str = "gamma", geometry: str = "R", zeta: float | None = None,
+) -> dict[str, float]:  # fmt: skip
+    """One beam of a Fig. 7 grid: E, L, h = h_over_L L and b/h of the reference beam, plus
+
+    damping  gamma: gamma of the reference beam; eta: gamma scaled so that eta (the damping of
+             the dimensionless equations) is the reference beam's; zeta: gamma scaled so that
+             zeta = eta / (2 beta_1^2) is `zeta` (default the reference beam's, then = eta)
+    geometry R: R of the reference beam; delta: R scaled with L so that L/R is the reference's.
+    """
+    if damping not in DAMPING:
+        raise RotbeamInputError(f"damping = {damping!r}: must be one of {', '.join(DAMPING)}")
+    if geometry not in GEOMETRY:
+        raise RotbeamInputError(f"geometry = {geometry!r}: must be one of {', '.join(GEOMETRY)}")
+    h = h_over_L * L
+    beam = dict(ref, E=float(E), L=float(L), h=float(h), b=float(ref["b"] / ref["h"] * h))
+    if geometry == "delta":
+        beam["R"] = float(ref["R"] / ref["L"] * L)
+    rb, b0 = Beam(**ref), Beam(**{**beam, "gamma": 1.0})  # b0.eta: eta per unit gamma
+    if damping == "eta":
+        beam["gamma"] = float(rb.eta / b0.eta)
+    elif damping == "zeta":
+        beam["gamma"] = float((rb.zeta if zeta is None else zeta) / b0.zeta)
+    return beam
+
+
+def variant_tag(damping: str, geometry: str, zeta: float | None = None) -> str:
+    """'eta-delta', 'zeta0.017-R', ...: names a (damping, geometry) hypothesis."""
+    d = f"zeta{g(zeta)}" if damping == "zeta" and zeta is not None else damping
+    return f"{d}-{geometry}"
+
+
 def fig7_beams(config: dict[str, Any]) -> dict[str, dict[str, float]]:
-    """Grid of beams: E x L x h/L, keeping b/h, rho, gamma and R of the reference beam."""
-    ref = config["beam"]
+    """Grid of beams: E x L x h/L, keeping b/h and rho of the reference beam and its gamma or
+    eta or zeta (fig7.damping) and its R or L/R (fig7.geometry).  The ids of the default
+    (gamma, R) grid carry no tag; the others end in _<damping>-<geometry>."""
+    f7 = config["fig7"]
+    damping, geometry = f7.get("damping", "gamma"), f7.get("geometry", "R")
+    zeta = f7.get("zeta")
+    default = (damping, geometry) == ("gamma", "R")
+    tag = "" if default else "_" + variant_tag(damping, geometry, zeta)
+    return _grid(config["beam"], f7, damping, geometry, zeta, prefix="", tag=tag)
+
+
+def _grid(ref, spec, damping, geometry, zeta, prefix, tag) -> dict[str, dict[str, float]]:
     out = {}
-    for E in config["fig7"]["E"]:
-        for L in config["fig7"]["L"]:
-            for hl in config["fig7"]["h_over_L"]:
-                h = hl * L
-                b = ref["b"] / ref["h"] * h
-                beam = dict(ref, E=float(E), L=float(L), h=float(h), b=float(b))
-                out[beam_id(beam)] = beam
+    for E in spec["E"]:
+        for L in spec["L"]:
+            for hl in spec["h_over_L"]:
+                beam = grid_beam(ref, E, L, hl, damping, geometry, zeta)
+                out[prefix + beam_id(beam) + tag] = beam
+    return out
+
+
+def repro_fig7_variants(config: dict[str, Any]) -> dict[str, dict[str, dict[str, float]]]:
+    """The damping x geometry hypotheses of the Fig. 7 study (reproduction.fig7): per tag, its
+    small grid of beams (ids prefixed 'r7_', so that they never meet the paper grid's files)."""
+    rc = config.get("reproduction", {}).get("fig7")
+    if not rc:
+        return {}
+    out = {}
+    for damping in rc["damping"]:
+        for geometry in rc["geometry"]:
+            zeta = rc.get("zeta") if damping == "zeta" else None
+            tag = variant_tag(damping, geometry, zeta)
+            out[tag] = _grid(config["beam"], rc, damping, geometry, zeta, "r7_", "_" + tag)
+    return out
+
+
+def run_grid_lines(
+    beams: dict[str, dict[str, float]], spec: dict[str, Any], amplitude: float, effects, numerics,
+    log: Callable[[str], None] | None = None,
+) -> dict[str, list]:  # fmt: skip
+    """Every boundary line of a small grid in this process (one job per hypothesis instead of one
+    per line): per beam id, its line DataFrames."""
+    from .sweeps import scan_line
+
+    out = {}
+    for bid, beam in beams.items():
+        lines, _ = boundary_lines(beam, spec["c_max"], spec, amplitude)
+        out[bid] = []
+        for lid, ls in lines.items():
+            if log:
+                log(f"{bid} {lid}")
+            df = scan_line(Beam(**beam), ls["omega0"], scan_frequencies(ls), amplitude=amplitude,
+                           effects=effects, numerics=numerics, log=log)  # fmt: skip
+            out[bid].append(df)
     return out
 
 
@@ -76,17 +157,22 @@ def check_config(config: dict[str, Any], schema: dict | None = None) -> None:
             f"empty or reversed; must be f_d_min < f_d_max"
         )
     R = config["beam"]["R"]
-    for i, L in enumerate(config["fig7"]["L"]):
+    geometry = config["fig7"].get("geometry", "R")
+    for i, L in enumerate(config["fig7"]["L"] if geometry == "R" else []):
         if not L < R:
             raise RotbeamInputError(
                 f"fig7.L[{i}] = {L!r}: must be < beam.R = {R!r} m (every Fig. 7 beam keeps the "
                 f"reference R, and its clamp must sit off the axis)"
             )
-    for bid, beam in fig7_beams(config).items():
-        try:
-            Beam(**beam)
-        except RotbeamInputError as exc:
-            raise RotbeamInputError(f"fig7 beam {bid}: {exc}") from None
+    grids = {"fig7": fig7_beams(config)}
+    for tag, beams in repro_fig7_variants(config).items():
+        grids[f"reproduction.fig7 ({tag})"] = beams
+    for where, beams in grids.items():
+        for bid, beam in beams.items():
+            try:
+                Beam(**beam)
+            except RotbeamInputError as exc:
+                raise RotbeamInputError(f"{where} beam {bid}: {exc}") from None
     from ..model.params import Effects
     from .sweeps import numerics_from_config
 

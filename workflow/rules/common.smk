@@ -11,6 +11,7 @@ from rotbeam.simulate.studies import (
     REF,
     fig7_beams,
     lines_from_config,
+    repro_fig7_variants,
     series_from_config,
     validate_config,
 )
@@ -94,4 +95,5 @@ def all_targets():
         for e in ("csv", "md", "pdf", "png")
     ]
     out += ["results/surrogate/speed.json"]
+    out += [f"results/reproduction/claims.{e}" for e in ("csv", "md")]
     return out

@@ -1,0 +1,228 @@
+# Paper against reproduction: the claims table (results/reproduction/claims.csv) and the
+# hypothesis studies behind its explanations (config: reproduction).  Every printed value comes
+# from workflow/resources/paper_claims.yaml; every value of ours from an output of this workflow.
+
+PAPER_CLAIMS = "workflow/resources/paper_claims.yaml"
+REPRO = config["reproduction"]
+R7 = repro_fig7_variants(config)
+CODE_REPRO = [
+    str(PKG / f)
+    for f in (
+        "analysis/claims.py",
+        "analysis/collapse.py",
+        "analysis/hypotheses.py",
+        "report/reproduction_figures.py",
+    )
+]
+
+
+wildcard_constraints:
+    variant="[A-Za-z0-9_.+-]+",
+
+
+def fig5_line(wildcards):
+    """The reference boundary line at Fig. 5's C_max, if the config has one (else nothing)."""
+    key = (REF, "cmax" + format(float(config["fig5"]["c_max"]), "g"))
+    return [f"results/sims/{key[0]}/{key[1]}.csv"] if key in LINES else []
+
+
+def fig7_grid_files(h_over_L=None):
+    return sorted(
+        f"results/boundary/{b}.csv"
+        for b, beam in FIG7_BEAMS.items()
+        if h_over_L is None or abs(beam["h"] / beam["L"] - h_over_L) < 1e-9
+    )
+
+
+def ref_line_files():
+    """Every reference-beam sweep line but the grid-convergence ones (their N differs)."""
+    return sorted(
+        f"results/sims/{b}/{line}.csv"
+        for (b, line) in LINES
+        if b == REF and not line.startswith("conv_")
+    )
+
+
+def c_hypotheses_input(wildcards):
+    if REPRO["c_hypotheses"]:
+        return ["results/reproduction/c_hypotheses.csv"]
+    return []
+
+
+rule repro_fig7_variant:
+    output:
+        "results/reproduction/fig7/{variant}_lines.csv",
+    log:
+        "logs/repro_fig7_variant/{variant}.log",
+    benchmark:
+        "benchmarks/repro_fig7_variant/{variant}.tsv"
+    conda:
+        "../envs/rotbeam.yaml"
+    params:
+        beams=lambda w: R7[w.variant],
+        spec={k: REPRO["fig7"][k] for k in ("c_max", "lo", "hi", "points")},
+        amplitude=config["amplitude"],
+        numerics=config["numerics"],
+        effects=config["effects"],
+        model_version=rotbeam.MODEL_VERSION,
+    script:
+        "../scripts/repro_fig7_variant.py"
+
+
+rule repro_fig7:
+    input:
+        lines=expand("results/reproduction/fig7/{variant}_lines.csv", variant=sorted(R7)),
+        ref_fit="results/fig6/fit.json",
+        claims=PAPER_CLAIMS,
+        code=CODE_REPRO + CODE_ANALYSIS,
+    output:
+        csv="results/reproduction/fig7_hypotheses.csv",
+        md=report(
+            "results/reproduction/fig7_hypotheses.md",
+            caption="../report/repro_fig7_table.rst",
+            category="Reproduction",
+        ),
+        pdf=report(
+            "results/reproduction/fig7_hypotheses.pdf",
+            caption="../report/repro_fig7.rst",
+            category="Reproduction",
+        ),
+        png="results/reproduction/fig7_hypotheses.png",
+        long="results/reproduction/hypotheses/fig7.csv",
+    log:
+        "logs/repro_fig7.log",
+    benchmark:
+        "benchmarks/repro_fig7.tsv"
+    conda:
+        "../envs/rotbeam.yaml"
+    params:
+        variants=sorted(R7),
+        beams=R7,
+        threshold=config["main_threshold"],
+    script:
+        "../scripts/repro_fig7.py"
+
+
+rule repro_estar:
+    input:
+        boundary="results/boundary/ref.csv",
+        line50=fig5_line,
+        claims=PAPER_CLAIMS,
+        code=CODE_REPRO,
+    output:
+        csv="results/reproduction/estar_readings.csv",
+        md=report(
+            "results/reproduction/estar_readings.md",
+            caption="../report/repro_estar.rst",
+            category="Reproduction",
+        ),
+        long="results/reproduction/hypotheses/estar.csv",
+    log:
+        "logs/repro_estar.log",
+    benchmark:
+        "benchmarks/repro_estar.tsv"
+    conda:
+        "../envs/rotbeam.yaml"
+    params:
+        beam=config["beam"],
+        amplitude=config["amplitude"],
+        threshold=config["main_threshold"],
+        fig5=config["fig5"],
+    script:
+        "../scripts/repro_estar.py"
+
+
+rule repro_fn_zeta:
+    input:
+        claims=PAPER_CLAIMS,
+        code=CODE_REPRO,
+    output:
+        csv="results/reproduction/fn_zeta.csv",
+        md=report(
+            "results/reproduction/fn_zeta.md",
+            caption="../report/repro_fn_zeta.rst",
+            category="Reproduction",
+        ),
+        long="results/reproduction/hypotheses/fn_zeta.csv",
+    log:
+        "logs/repro_fn_zeta.log",
+    benchmark:
+        "benchmarks/repro_fn_zeta.tsv"
+    conda:
+        "../envs/rotbeam.yaml"
+    params:
+        beam=config["beam"],
+        N=config["numerics"]["N"],
+    script:
+        "../scripts/repro_fn_zeta.py"
+
+
+rule repro_figD9:
+    input:
+        grid=lambda w: fig7_grid_files(0.05),
+        cfit="results/tables/c_per_threshold.csv",
+        claims=PAPER_CLAIMS,
+        code=CODE_REPRO,
+    output:
+        pdf=report(
+            "results/reproduction/figD9_window.pdf",
+            caption="../report/repro_figD9.rst",
+            category="Reproduction",
+        ),
+        png="results/reproduction/figD9_window.png",
+        csv="results/reproduction/figD9_bound.csv",
+        long="results/reproduction/hypotheses/figD9.csv",
+    log:
+        "logs/repro_figD9.log",
+    benchmark:
+        "benchmarks/repro_figD9.tsv"
+    conda:
+        "../envs/rotbeam.yaml"
+    params:
+        delta_points=REPRO["figD9"]["delta_points"],
+    script:
+        "../scripts/repro_figD9.py"
+
+
+rule reproduction:
+    input:
+        claims=PAPER_CLAIMS,
+        table1="results/tables/table1.csv",
+        c_per_threshold="results/tables/c_per_threshold.csv",
+        c0_table="results/tables/c0_threshold.csv",
+        boundary_ref="results/boundary/ref.csv",
+        fig6_fit="results/fig6/fit.json",
+        fig7_fit="results/fig7/fit.json",
+        fig7_grid=fig7_grid_files(),
+        fig3_line="results/sims/ref/fig3.csv",
+        fig3_series="results/series/fig3.csv",
+        fig5_series=expand(
+            "results/series/fig5_E{e}.csv",
+            e=[format(float(e), "g") for e in config["fig5"]["e_max"]],
+        ),
+        ref_lines=ref_line_files(),
+        convergence="results/figB8/convergence.csv",
+        studies=expand(
+            "results/reproduction/hypotheses/{s}.csv", s=["fig7", "estar", "fn_zeta", "figD9"]
+        ),
+        c_hypotheses=c_hypotheses_input,
+        code=CODE_REPRO,
+    output:
+        csv="results/reproduction/claims.csv",
+        md=report(
+            "results/reproduction/claims.md",
+            caption="../report/reproduction.rst",
+            category="Reproduction",
+        ),
+    log:
+        "logs/reproduction.log",
+    benchmark:
+        "benchmarks/reproduction.tsv"
+    conda:
+        "../envs/rotbeam.yaml"
+    params:
+        threshold=config["main_threshold"],
+        amplitude=config["amplitude"],
+        convergence_tolerance=REPRO["convergence_tolerance"],
+    script:
+        "../scripts/reproduction.py"

@@ -1,0 +1,22 @@
+"""Fig. 7 study: every boundary line of one damping/geometry hypothesis's small grid."""
+
+# ruff: noqa: F821
+# (`snakemake` is injected by Snakemake)
+import pandas as pd
+
+from rotbeam.model.params import Effects
+from rotbeam.report.io import write_csv
+from rotbeam.simulate.studies import run_grid_lines
+from rotbeam.simulate.sweeps import numerics_from_config
+
+with open(snakemake.log[0], "w") as log:
+    lines = run_grid_lines(
+        snakemake.params.beams,
+        snakemake.params.spec,
+        snakemake.params.amplitude,
+        Effects.from_list(snakemake.params.effects),
+        numerics_from_config(snakemake.params.numerics),
+        log=lambda msg: print(msg, file=log, flush=True),
+    )
+frames = [df.assign(beam=bid) for bid, dfs in lines.items() for df in dfs]
+write_csv(pd.concat(frames, ignore_index=True), snakemake.output[0])
