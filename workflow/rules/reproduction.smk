@@ -71,7 +71,9 @@ rule repro_fig7_variant:
 
 rule repro_fig7:
     input:
-        lines=expand("results/reproduction/fig7/{variant}_lines.csv", variant=sorted(R7)),
+        lines=expand(
+            "results/reproduction/fig7/{variant}_lines.csv", variant=sorted(R7)
+        ),
         ref_fit="results/fig6/fit.json",
         claims=PAPER_CLAIMS,
         code=CODE_REPRO + CODE_ANALYSIS,
@@ -203,7 +205,8 @@ rule reproduction:
         ref_lines=ref_line_files(),
         convergence="results/figB8/convergence.csv",
         studies=expand(
-            "results/reproduction/hypotheses/{s}.csv", s=["fig7", "estar", "fn_zeta", "figD9"]
+            "results/reproduction/hypotheses/{s}.csv",
+            s=["fig7", "estar", "fn_zeta", "figD9"],
         ),
         c_hypotheses=c_hypotheses_input,
         code=CODE_REPRO,
