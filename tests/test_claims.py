@@ -21,7 +21,9 @@ from rotbeam.simulate.studies import grid_beam
 
 ROOT = Path(__file__).resolve().parents[1]
 CLAIMS = ROOT / "workflow/resources/paper_claims.yaml"
-SNAKEMAKE = [sys.executable, "-m", "snakemake"]
+TARGET = "results/reproduction/claims.csv"
+# the target first: --configfile takes every word after it
+SNAKEMAKE = [sys.executable, "-m", "snakemake", TARGET]
 
 
 def rows(*specs):
@@ -129,17 +131,15 @@ def quick_run(tmp_path_factory):
     shutil.copy(ROOT / "Snakefile", work)
     for d in ("config", "workflow", "profiles"):
         shutil.copytree(ROOT / d, work / d)
-    p = subprocess.run([*SNAKEMAKE, "--cores", "2", "--configfile", "config/quick.yaml",
-                        "results/reproduction/claims.csv"], cwd=work, capture_output=True,
-                       text=True, timeout=1800)  # fmt: skip
+    p = subprocess.run([*SNAKEMAKE, "--cores", "2", "--configfile", "config/quick.yaml"],
+                       cwd=work, capture_output=True, text=True, timeout=1800)  # fmt: skip
     assert p.returncode == 0, p.stderr[-3000:]
     return work
 
 
 def dry_jobs(work: Path, *extra: str) -> dict[str, int]:
     p = subprocess.run([*SNAKEMAKE, "-n", "--cores", "1", "--configfile", "config/quick.yaml",
-                        "results/reproduction/claims.csv", *extra], cwd=work,
-                       capture_output=True, text=True, timeout=300)  # fmt: skip
+                        *extra], cwd=work, capture_output=True, text=True, timeout=300)  # fmt: skip
     assert p.returncode == 0, p.stderr[-3000:]
     jobs, stats = {}, False
     for line in p.stdout.splitlines():
@@ -157,8 +157,7 @@ def dry_jobs(work: Path, *extra: str) -> dict[str, int]:
 
 def claims_of(work: Path, *extra: str) -> pd.DataFrame:
     p = subprocess.run([*SNAKEMAKE, "--cores", "1", "--configfile", "config/quick.yaml",
-                        "results/reproduction/claims.csv", *extra], cwd=work,
-                       capture_output=True, text=True, timeout=600)  # fmt: skip
+                        *extra], cwd=work, capture_output=True, text=True, timeout=600)  # fmt: skip
     assert p.returncode == 0, p.stderr[-3000:]
     return pd.read_csv(work / "results/reproduction/claims.csv").set_index("id")
 

@@ -2,52 +2,6 @@
 # hypothesis studies behind its explanations (config: reproduction).  Every printed value comes
 # from workflow/resources/paper_claims.yaml; every value of ours from an output of this workflow.
 
-PAPER_CLAIMS = "workflow/resources/paper_claims.yaml"
-REPRO = config["reproduction"]
-R7 = repro_fig7_variants(config)
-CODE_REPRO = [
-    str(PKG / f)
-    for f in (
-        "analysis/claims.py",
-        "analysis/collapse.py",
-        "analysis/hypotheses.py",
-        "report/reproduction_figures.py",
-    )
-]
-
-
-wildcard_constraints:
-    variant="[A-Za-z0-9_.+-]+",
-
-
-def fig5_line(wildcards):
-    """The reference boundary line at Fig. 5's C_max, if the config has one (else nothing)."""
-    key = (REF, "cmax" + format(float(config["fig5"]["c_max"]), "g"))
-    return [f"results/sims/{key[0]}/{key[1]}.csv"] if key in LINES else []
-
-
-def fig7_grid_files(h_over_L=None):
-    return sorted(
-        f"results/boundary/{b}.csv"
-        for b, beam in FIG7_BEAMS.items()
-        if h_over_L is None or abs(beam["h"] / beam["L"] - h_over_L) < 1e-9
-    )
-
-
-def ref_line_files():
-    """Every reference-beam sweep line but the grid-convergence ones (their N differs)."""
-    return sorted(
-        f"results/sims/{b}/{line}.csv"
-        for (b, line) in LINES
-        if b == REF and not line.startswith("conv_")
-    )
-
-
-def c_hypotheses_input(wildcards):
-    if REPRO["c_hypotheses"]:
-        return ["results/reproduction/c_hypotheses.csv"]
-    return []
-
 
 rule repro_fig7_variant:
     output:
