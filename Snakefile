@@ -22,6 +22,7 @@ include: "workflow/rules/boundary.smk"
 include: "workflow/rules/tables.smk"
 include: "workflow/rules/surrogate.smk"
 include: "workflow/rules/performance.smk"
+include: "workflow/rules/about.smk"
 
 
 rule all:
