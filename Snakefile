@@ -23,6 +23,8 @@ include: "workflow/rules/tables.smk"
 include: "workflow/rules/surrogate.smk"
 include: "workflow/rules/performance.smk"
 include: "workflow/rules/reproduction.smk"
+include: "workflow/rules/about.smk"
+include: "workflow/rules/cluster.smk"
 
 
 rule all:

@@ -53,22 +53,12 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from typing import Any
+from warnings import warn
 
 import numpy as np
 from scipy.integrate import DenseOutput, OdeSolver
-from scipy.integrate._ivp.common import (
-    EPS,
-    norm,
-    num_jac,
-    select_initial_step,
-    validate_first_step,
-    validate_max_step,
-    validate_tol,
-    warn_extraneous,
-)
 from scipy.linalg import lu_factor, lu_solve
-from scipy.optimize._numdiff import group_columns
-from scipy.sparse import csc_matrix, issparse
+from scipy.sparse import issparse
 
 GAMMA = 2.0 - np.sqrt(2.0)  #: TR stage ends at t_n + GAMMA h
 D = GAMMA / 2.0  #: diagonal coefficient of both stages
@@ -230,10 +220,8 @@ class TRBDF2(OdeSolver):
         """Jacobian as (callable that re-evaluates it or None if constant, dense matrix)."""
         t0, y0 = self.t, self.y
         if jac is None:
-            if sparsity is not None:
-                if issparse(sparsity):
-                    sparsity = csc_matrix(sparsity)
-                sparsity = (sparsity, group_columns(sparsity))
+            if sparsity is not None:  # a structure only: J is dense (see num_jac below)
+                sparsity = sparsity.toarray() if issparse(sparsity) else np.asarray(sparsity)
 
             def jac_wrapped(t, y, f):
                 self.njev += 1
@@ -391,3 +379,136 @@ def fixed_steps(
         s.f = s.fun(t + h, y_new)
         out.append(y_new.copy())
     return np.array(out)
+
+
+# Helpers of scipy's own implicit solvers (scipy/integrate/_ivp/common.py, scipy 1.17), copied
+# because that module is private and may change without notice.  Copyright (c) 2001-2002
+# Enthought, Inc. 2003, SciPy Developers; BSD 3-clause licence (scipy's LICENSE.txt).  Changes:
+# num_jac has only the dense path, and a `jac_sparsity` structure zeroes the entries outside it
+# instead of grouping columns (the same values, n evaluations of f instead of fewer).
+EPS = np.finfo(float).eps
+NUM_JAC_DIFF_REJECT = EPS**0.875
+NUM_JAC_DIFF_SMALL = EPS**0.75
+NUM_JAC_DIFF_BIG = EPS**0.25
+NUM_JAC_MIN_FACTOR = 1e3 * EPS
+NUM_JAC_FACTOR_INCREASE = 10
+NUM_JAC_FACTOR_DECREASE = 0.1
+
+
+def validate_first_step(first_step, t0, t_bound):
+    if first_step <= 0:
+        raise ValueError("`first_step` must be positive.")
+    if first_step > np.abs(t_bound - t0):
+        raise ValueError("`first_step` exceeds bounds.")
+    return first_step
+
+
+def validate_max_step(max_step):
+    if max_step <= 0:
+        raise ValueError("`max_step` must be positive.")
+    return max_step
+
+
+def warn_extraneous(extraneous):
+    if extraneous:
+        warn(
+            "The following arguments have no effect for a chosen solver: "
+            f"{', '.join(f'`{x}`' for x in extraneous)}.",
+            stacklevel=3,
+        )
+
+
+def validate_tol(rtol, atol, n):
+    if np.any(rtol < 100 * EPS):
+        warn(
+            "At least one element of `rtol` is too small. "
+            f"Setting `rtol = np.maximum(rtol, {100 * EPS})`.",
+            stacklevel=3,
+        )
+        rtol = np.maximum(rtol, 100 * EPS)
+    atol = np.asarray(atol)
+    if atol.ndim > 0 and atol.shape != (n,):
+        raise ValueError("`atol` has wrong shape.")
+    if np.any(atol < 0):
+        raise ValueError("`atol` must be positive.")
+    return rtol, atol
+
+
+def norm(x):
+    """RMS norm."""
+    return np.linalg.norm(x) / x.size**0.5
+
+
+def select_initial_step(fun, t0, y0, t_bound, max_step, f0, direction, order, rtol, atol):
+    """Initial step of Hairer, Norsett & Wanner, Solving ODEs I, Sec. II.4."""
+    if y0.size == 0:
+        return np.inf
+    interval_length = abs(t_bound - t0)
+    if interval_length == 0.0:
+        return 0.0
+    scale = atol + np.abs(y0) * rtol
+    d0 = norm(y0 / scale)
+    d1 = norm(f0 / scale)
+    h0 = 1e-6 if d0 < 1e-5 or d1 < 1e-5 else 0.01 * d0 / d1
+    h0 = min(h0, interval_length)
+    f1 = fun(t0 + h0 * direction, y0 + h0 * direction * f0)
+    d2 = norm((f1 - f0) / scale) / h0
+    if d1 <= 1e-15 and d2 <= 1e-15:
+        h1 = max(1e-6, h0 * 1e-3)
+    else:
+        h1 = (0.01 / max(d1, d2)) ** (1 / (order + 1))
+    return min(100 * h0, h1, interval_length, max_step)
+
+
+def num_jac(fun, t, y, f, threshold, factor, sparsity=None):
+    """Forward-difference Jacobian of the vectorized `fun`, with the step factor of each column
+    adapted from call to call to keep the difference well above its round-off; returns
+    (J, factor for the next call)."""
+    y = np.asarray(y)
+    n = y.shape[0]
+    if n == 0:
+        return np.empty((0, 0)), factor
+    factor = np.full(n, EPS**0.5) if factor is None else factor.copy()
+    f_sign = 2 * (np.real(f) >= 0).astype(float) - 1
+    y_scale = f_sign * np.maximum(threshold, np.abs(y))
+    h = (y + factor * y_scale) - y
+    for i in np.nonzero(h == 0)[0]:
+        while h[i] == 0:
+            factor[i] *= 10
+            h[i] = (y[i] + factor[i] * y_scale[i]) - y[i]
+
+    h_vecs = np.diag(h)
+    f_new = fun(t, y[:, None] + h_vecs)
+    diff = f_new - f[:, None]
+    max_ind = np.argmax(np.abs(diff), axis=0)
+    r = np.arange(n)
+    max_diff = np.abs(diff[max_ind, r])
+    scale = np.maximum(np.abs(f[max_ind]), np.abs(f_new[max_ind, r]))
+    diff_too_small = max_diff < NUM_JAC_DIFF_REJECT * scale
+    if np.any(diff_too_small):
+        (ind,) = np.nonzero(diff_too_small)
+        new_factor = NUM_JAC_FACTOR_INCREASE * factor[ind]
+        h_new = (y[ind] + new_factor * y_scale[ind]) - y[ind]
+        h_vecs[ind, ind] = h_new
+        f_new = fun(t, y[:, None] + h_vecs[:, ind])
+        diff_new = f_new - f[:, None]
+        max_ind = np.argmax(np.abs(diff_new), axis=0)
+        r = np.arange(ind.shape[0])
+        max_diff_new = np.abs(diff_new[max_ind, r])
+        scale_new = np.maximum(np.abs(f[max_ind]), np.abs(f_new[max_ind, r]))
+        update = max_diff[ind] * scale_new < max_diff_new * scale[ind]
+        if np.any(update):
+            (update,) = np.nonzero(update)
+            update_ind = ind[update]
+            factor[update_ind] = new_factor[update]
+            h[update_ind] = h_new[update]
+            diff[:, update_ind] = diff_new[:, update]
+            scale[update_ind] = scale_new[update]
+            max_diff[update_ind] = max_diff_new[update]
+    diff /= h
+    factor[max_diff < NUM_JAC_DIFF_SMALL * scale] *= NUM_JAC_FACTOR_INCREASE
+    factor[max_diff > NUM_JAC_DIFF_BIG * scale] *= NUM_JAC_FACTOR_DECREASE
+    factor = np.maximum(factor, NUM_JAC_MIN_FACTOR)
+    if sparsity is not None:
+        diff = np.where(sparsity != 0, diff, 0.0)
+    return diff, factor

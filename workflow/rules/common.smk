@@ -1,3 +1,5 @@
+import importlib.metadata
+import platform
 import sys
 from pathlib import Path
 
@@ -40,8 +42,9 @@ wildcard_constraints:
 
 
 # Threads of the work-precision benchmark: every core of a local run, so that nothing runs beside
-# its timings.  With a cluster executor there is no --cores and `workflow.cores` raises; the job
-# then asks for two cores of its node (the timings are serial, the second keeps the node quiet).
+# its timings.  With a cluster executor and no --cores `workflow.cores` raises; the job then asks
+# for two cores of its node (the timings are serial, the second keeps the node quiet).  With
+# --cores (profiles/slurm sets 1, the cores of one Slurm job) it asks for that many.
 try:
     BENCHMARK_THREADS = workflow.cores
 except WorkflowError:
@@ -100,7 +103,7 @@ def all_targets():
         for s in ("southwell", "vs_full")
         for e in ("csv", "md", "pdf", "png")
     ]
-    out += ["results/surrogate/speed.json"]
+    out += ["results/surrogate/speed.json", "results/about/versions.txt"]
     out += [f"results/reproduction/claims.{e}" for e in ("csv", "md")]
     return out
 
@@ -151,3 +154,34 @@ def c_hypotheses_input(wildcards):
     if REPRO["c_hypotheses"]:
         return ["results/reproduction/c_hypotheses.csv"]
     return []
+
+
+# Versions of the About page (workflow/rules/about.smk)
+ABOUT_PACKAGES = [
+    "numpy",
+    "scipy",
+    "pandas",
+    "matplotlib",
+    "PyYAML",
+    "snakemake",
+    "snakemake-executor-plugin-slurm",
+]
+
+
+def installed_versions():
+    out = {"python": platform.python_version()}
+    for name in ABOUT_PACKAGES:
+        try:
+            out[name] = importlib.metadata.version(name)
+        except importlib.metadata.PackageNotFoundError:
+            out[name] = "not installed"
+    return out
+
+
+def checked_versions():
+    """name -> version of constraints.txt beside the Snakefile ({} in a copy without it)."""
+    path = Path(workflow.basedir) / "constraints.txt"
+    if not path.exists():
+        return {}
+    pins = (line.split("#")[0].strip() for line in path.read_text().splitlines())
+    return dict(p.split("==") for p in pins if "==" in p)

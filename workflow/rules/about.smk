@@ -1,0 +1,20 @@
+# The software this run used, beside the versions the reproduction was checked with
+# (constraints.txt): the "About" entry of `snakemake --report`.
+rule versions:
+    output:
+        report(
+            "results/about/versions.txt",
+            caption="../report/versions.rst",
+            category="About",
+        ),
+    log:
+        "logs/versions.log",
+    conda:
+        "../envs/rotbeam.yaml"
+    params:
+        # a changed version reruns this rule (and only this one)
+        versions=installed_versions(),
+        checked=checked_versions(),
+        model_version=rotbeam.MODEL_VERSION,
+    script:
+        "../scripts/versions.py"
