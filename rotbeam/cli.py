@@ -78,7 +78,7 @@ def build_parser() -> argparse.ArgumentParser:
 
     b = sub.add_parser("bench", help="work-precision benchmark (error against wall time)")
     b.add_argument("--quick", action="store_true", help="the small plan (2 scenes, 2 tolerances)")
-    b.add_argument("--config", help="YAML mapping of BenchPlan fields (see rotbeam/bench.py)")
+    b.add_argument("--config", help="YAML mapping of BenchPlan fields (see rotbeam/bench/plan.py)")
     b.add_argument("--out", default="results/performance/work_precision",
                    help="output stem: writes STEM.csv, .md, .pdf, .png")  # fmt: skip
     b.add_argument("--max-seconds", type=_finite, help="budget per run [s]")
@@ -287,7 +287,9 @@ def cmd_modes(args: argparse.Namespace) -> int:
 
 
 def cmd_bench(args: argparse.Namespace) -> int:
-    from .bench.benchmark import plan_from_dict, run_benchmark, write_outputs
+    from .bench.plan import plan_from_dict
+    from .bench.report import write_outputs
+    from .bench.run import run_benchmark
     from .config.scenefile import load_yaml
 
     spec: dict[str, Any] = {}

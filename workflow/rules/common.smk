@@ -52,7 +52,15 @@ CODE_ANALYSIS = [str(PKG / f) for f in ("analysis/boundary.py", "model/criterion
 CODE_FIGURES = [str(PKG / f) for f in ("report/figures.py", "report/style.py")]
 CODE_SOLVER = [
     str(PKG / f)
-    for f in ("bench/benchmark.py", "model/elastica.py", "solve/steady.py", "solve/periodic.py", "solve/trbdf2.py")
+    for f in (
+        "bench/plan.py",
+        "bench/run.py",
+        "bench/report.py",
+        "model/elastica.py",
+        "solve/steady.py",
+        "solve/periodic.py",
+        "solve/trbdf2.py",
+    )
 ]
 
 
