@@ -184,7 +184,8 @@ def _check_threshold_flag(value: float) -> None:
 
 
 def cmd_simulate(args: argparse.Namespace) -> int:
-    from .analysis.verdict import check_plot_path, judge, plot_verdict
+    from .analysis.verdict import judge
+    from .report.verdict_plot import check_plot_path, plot_verdict
     from .simulate.scene import simulate
 
     scene = _scene_from_args(args)
