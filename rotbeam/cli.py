@@ -158,20 +158,22 @@ def _scene_from_args(args: argparse.Namespace):
 def _write_series(path: str, series: dict[str, np.ndarray]) -> None:
     import pandas as pd
 
-    out = Path(path)
-    out.parent.mkdir(parents=True, exist_ok=True)
+    from .report.io import atomic_write
+
     df = pd.DataFrame(series)
-    tmp = out.with_name(out.name + ".part")
-    if out.suffix == ".parquet":  # suffix checked in cmd_simulate before the run
-        try:
-            df.to_parquet(tmp)
-        except ImportError:
-            raise RotbeamInputError(
-                "--out .parquet needs pyarrow or fastparquet (pip install pyarrow); use .csv"
-            ) from None
-    else:
-        df.to_csv(tmp, index=False)
-    tmp.replace(out)
+
+    def write(tmp: Path) -> None:
+        if Path(path).suffix == ".parquet":  # suffix checked in cmd_simulate before the run
+            try:
+                df.to_parquet(tmp)
+            except ImportError:
+                raise RotbeamInputError(
+                    "--out .parquet needs pyarrow or fastparquet (pip install pyarrow); use .csv"
+                ) from None
+        else:
+            df.to_csv(tmp, index=False)
+
+    atomic_write(path, write)
 
 
 def _check_threshold_flag(value: float) -> None:
