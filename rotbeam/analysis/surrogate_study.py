@@ -191,6 +191,76 @@ def full_critical(
     return out
 
 
+def _line_row(
+    b: Beam,
+    name: str,
+    line: pd.DataFrame,
+    p: pd.DataFrame,
+    sec: float,
+    f_full: float,
+    threshold: float,
+    effects: Effects,
+    n_scan: int,
+    N: int,
+    c_fit: float,
+    tolerance: float,
+) -> dict:
+    """One line of `vs_full_table`: f_d* and E* of both models and the analytical boundary, the
+    cost; `p` and `sec` are the line's surrogate points and their time (`surrogate_points`)."""
+    w0 = float(line["omega0"].iloc[0])
+    a = float(line["amplitude"].iloc[0])
+    c_max = float(line["C_max"].iloc[0])
+    f_sur, t_crit, msg = _surrogate_critical(b, w0, threshold, a, effects, n_scan)
+    f_grid = critical_from_scan(p["f_d"].to_numpy(), p["sur_delta_rms"].to_numpy(), threshold)
+    e = b.G * a * 2.0 * math.pi
+    f0_ex = float(natural_frequencies_hz(b, abs(w0) + a, 1, N, softening=True)[0])
+    f0_sw = southwell_frequency_hz(b, abs(w0) + a, effects.softening)
+    rel = f_sur / f_full - 1.0
+    rel_grid = f_grid["f_d_root"] / f_full - 1.0
+    return {
+        "line": name, "omega0": w0, "C_max": c_max, "threshold": threshold,
+        "f0_exact_hz": f0_ex, "f0_southwell_hz": f0_sw,
+        "f_d_star_full_hz": f_full, "f_d_star_surrogate_hz": f_sur,
+        "rel_diff": rel, "within_tolerance": bool(abs(rel) <= tolerance),
+        "f_d_star_surrogate_grid_hz": f_grid["f_d_root"], "rel_diff_grid": rel_grid,
+        "E_star_full": e * f_full, "E_star_surrogate": e * f_sur,
+        "E_star_analytical_S1": analytical_boundary(b, c_max, c_fit, amplitude=a),
+        "E_star_analytical_exact": analytical_boundary_exact(b, c_max, c_fit, a, N),
+        "c_full": f_full / f0_ex, "c_surrogate": f_sur / f0_sw,
+        "points": len(p),
+        "full_seconds_per_point": float(p["full_seconds"].mean()),
+        "surrogate_seconds_per_point": sec / max(1, len(p)),
+        "surrogate_seconds_critical": t_crit,
+        "full_N": int(line["N"].iloc[0]) if "N" in line else -1,
+        "message": msg,
+    }  # fmt: skip
+
+
+def _speed_summary(
+    table: pd.DataFrame, points: pd.DataFrame, sur_seconds: float, n_scan: int
+) -> dict:
+    """Cost per point of both models (surrogate: measured here; full: the lines' `seconds`)."""
+    n_points = len(points)
+    full_s = points["full_seconds"].to_numpy(float)
+    sur_pp = sur_seconds / n_points
+    return {
+        "points": n_points,
+        "lines": len(table),
+        "surrogate_seconds_per_point": sur_pp,
+        "full_seconds_per_point_mean": float(np.nanmean(full_s)),
+        "full_seconds_per_point_median": float(np.nanmedian(full_s)),
+        "speedup_mean": float(np.nanmean(full_s)) / sur_pp if sur_pp > 0 else math.nan,
+        "surrogate_seconds_per_f_d_star": float(table["surrogate_seconds_critical"].mean()),
+        "surrogate_n_scan": n_scan,
+        "full_seconds_per_line_mean": float(points.groupby("line")["full_seconds"].sum().mean()),
+        "full_N": sorted({int(n) for n in table["full_N"]}),
+        "note": "surrogate: time.perf_counter around steady_rms (dynamic + quasi-static harmonic "
+        "balance) at the full lines' drive frequencies, best of 3 passes after a warm-up call; "
+        "full: the sweep lines' `seconds` column (dynamic + quasi-static per point, with "
+        "continuation).",
+    }
+
+
 def vs_full_table(
     beam: dict,
     lines: Mapping[str, pd.DataFrame],
@@ -213,65 +283,20 @@ def vs_full_table(
     """
     b = Beam(**beam)
     rows, pts, sur_seconds = [], [], 0.0
-    n_points = 0
     steady_rms(Dimensionless.from_physical(b, Drive(1.0, 1.0, 1.0), effects))  # warm caches
     for name, line in lines.items():
         p, sec = surrogate_points(beam, line, effects)
         p.insert(0, "line", name)
         pts.append(p)
         sur_seconds += sec
-        n_points += len(p)
-        w0 = float(line["omega0"].iloc[0])
-        a = float(line["amplitude"].iloc[0])
-        c_max = float(line["C_max"].iloc[0])
-        f_sur, t_crit, msg = _surrogate_critical(b, w0, threshold, a, effects, n_scan)
-        f_grid = critical_from_scan(p["f_d"].to_numpy(), p["sur_delta_rms"].to_numpy(), threshold)
         f_full = float(full_critical.get(name, math.nan))
-        e = b.G * a * 2.0 * math.pi
-        f0_ex = float(natural_frequencies_hz(b, abs(w0) + a, 1, N, softening=True)[0])
-        f0_sw = southwell_frequency_hz(b, abs(w0) + a, effects.softening)
-        rel = f_sur / f_full - 1.0
-        rel_grid = f_grid["f_d_root"] / f_full - 1.0
-        rows.append({
-            "line": name, "omega0": w0, "C_max": c_max, "threshold": threshold,
-            "f0_exact_hz": f0_ex, "f0_southwell_hz": f0_sw,
-            "f_d_star_full_hz": f_full, "f_d_star_surrogate_hz": f_sur,
-            "rel_diff": rel, "within_tolerance": bool(abs(rel) <= tolerance),
-            "f_d_star_surrogate_grid_hz": f_grid["f_d_root"], "rel_diff_grid": rel_grid,
-            "E_star_full": e * f_full, "E_star_surrogate": e * f_sur,
-            "E_star_analytical_S1": analytical_boundary(b, c_max, c_fit, amplitude=a),
-            "E_star_analytical_exact": analytical_boundary_exact(b, c_max, c_fit, a, N),
-            "c_full": f_full / f0_ex, "c_surrogate": f_sur / f0_sw,
-            "points": len(p),
-            "full_seconds_per_point": float(p["full_seconds"].mean()),
-            "surrogate_seconds_per_point": sec / max(1, len(p)),
-            "surrogate_seconds_critical": t_crit,
-            "full_N": int(line["N"].iloc[0]) if "N" in line else -1,
-            "message": msg,
-        })  # fmt: skip
-    table = pd.DataFrame(rows).sort_values("C_max", kind="stable").reset_index(drop=True)
-    points = pd.concat(pts, ignore_index=True) if pts else pd.DataFrame()
-    if not n_points:
+        rows.append(_line_row(b, name, line, p, sec, f_full, threshold, effects, n_scan, N, c_fit,
+                              tolerance))  # fmt: skip
+    if not sum(len(p) for p in pts):
         raise RotbeamInputError("no sweep line to compare the surrogate with")
-    full_s = points["full_seconds"].to_numpy(float)
-    sur_pp = sur_seconds / n_points
-    speed = {
-        "points": n_points,
-        "lines": len(rows),
-        "surrogate_seconds_per_point": sur_pp,
-        "full_seconds_per_point_mean": float(np.nanmean(full_s)),
-        "full_seconds_per_point_median": float(np.nanmedian(full_s)),
-        "speedup_mean": float(np.nanmean(full_s)) / sur_pp if sur_pp > 0 else math.nan,
-        "surrogate_seconds_per_f_d_star": float(table["surrogate_seconds_critical"].mean()),
-        "surrogate_n_scan": n_scan,
-        "full_seconds_per_line_mean": float(points.groupby("line")["full_seconds"].sum().mean()),
-        "full_N": sorted({int(r["full_N"]) for r in rows}),
-        "note": "surrogate: time.perf_counter around steady_rms (dynamic + quasi-static harmonic "
-        "balance) at the full lines' drive frequencies, best of 3 passes after a warm-up call; "
-        "full: the sweep lines' `seconds` column (dynamic + quasi-static per point, with "
-        "continuation).",
-    }
-    return table, points, speed
+    table = pd.DataFrame(rows).sort_values("C_max", kind="stable").reset_index(drop=True)
+    points = pd.concat(pts, ignore_index=True)
+    return table, points, _speed_summary(table, points, sur_seconds, n_scan)
 
 
 def validity_statement(table: pd.DataFrame, tolerance: float) -> str:

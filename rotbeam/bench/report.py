@@ -90,67 +90,78 @@ def summary_markdown(
     return "\n".join(lines) + "\n"
 
 
+#: errors below this (agreement to round-off) are drawn at it on the log axes
+FLOOR = 1e-12
+
+
 def plot(runs: pd.DataFrame, refs: pd.DataFrame, plan: BenchPlan, pdf: str, png: str) -> None:
     """Error against wall time, log-log: one panel per scene (N = plan.N), one for the grid."""
+    from matplotlib.ticker import LogLocator, NullFormatter
+
     scenes = list(dict.fromkeys(runs.scene))
     ncols = 3
     nrows = math.ceil((len(scenes) + 1) / ncols)
     fig, axes = plotting.figure(nrows, ncols, width=11.0, height=3.4 * nrows, squeeze=False)
     axes = axes.ravel()
+    for ax, scene in zip(axes, scenes, strict=False):
+        _scene_panel(ax, runs, refs[refs.scene == scene].iloc[0], scene, plan)
+    _grid_panel(axes[len(scenes)], runs, scenes, plan)
+    for a in axes:
+        a.xaxis.set_minor_formatter(NullFormatter())
+        a.yaxis.set_minor_formatter(NullFormatter())
+        a.xaxis.set_major_locator(LogLocator(base=10, numticks=12))
+    handles, labels = axes[0].get_legend_handles_labels()
+    for ax in axes[len(scenes) + 1 :]:
+        ax.axis("off")
+    fig.legend(handles, labels, loc="lower center", ncol=3, fontsize=7, bbox_to_anchor=(0.5, 0.0))
+    fig.text(0.99, 0.005, f"errors below {FLOOR:g} (agreement to round-off) are drawn at {FLOOR:g}",
+             ha="right", va="bottom", fontsize=7, color=plotting.GREY)  # fmt: skip
+    fig.get_layout_engine().set(rect=(0, 0.12 + 0.1 * (nrows == 1), 1, 0.88 - 0.1 * (nrows == 1)))
+    plotting.save(fig, pdf, png)
+
+
+def _scene_panel(ax, runs: pd.DataFrame, ref: pd.Series, scene: str, plan: BenchPlan) -> None:
+    """One scene: every curve's error against wall time, the surrogate, N's spatial error."""
     colours = dict(zip(CURVES, ["0.2", "#8c564b", "#d95f02", "#9467bd", "#17becf", "#bcbd22",
                                 "#2ca02c", plotting.DYN], strict=True))  # fmt: skip
     markers = dict(zip(CURVES, "ovs^DPxo", strict=True))
-    floor = 1e-12
-    for ax, scene in zip(axes, scenes, strict=False):
-        sel = runs[(runs.scene == scene) & (runs.study == "method")]
-        ref = refs[refs.scene == scene].iloc[0]
-        for name in [c for c in CURVES if c in set(sel.curve)]:
-            c = sel[(sel.curve == name) & sel.converged]
-            ax.loglog(c.seconds, np.maximum(c.err_rms, floor), marker=markers[name],
-                      color=colours[name], label=CURVES[name].label)  # fmt: skip
-        sur = runs[(runs.scene == scene) & (runs.study == "surrogate")]
-        if len(sur):
-            ax.loglog(sur.seconds, sur.err_rms, "*", ms=11, color="k",
-                      label="surrogate (error vs converged)")  # fmt: skip
-        spatial = abs(ref[f"rms_N{plan.N}"] - ref["rms"]) / abs(ref["rms"])
-        ax.axhline(spatial, ls="--", lw=1, color=plotting.GREY,
-                   label=f"N = {plan.N} vs converged (spatial error)")  # fmt: skip
-        ax.axhline(plan.target, ls=":", lw=1, color="r", label=f"target {plan.target:g}")
-        omega0, f_d = ref["omega0"], ref["f_d"]
-        ax.set_title(f"$\\Omega_0$ = {omega0:g} rad/s, $f_d$ = {f_d:g} Hz")
-        ax.set_xlabel("wall time [s]")
-        ax.set_ylabel("relative error of RMS($y_m$)")
-    ax = axes[len(scenes)]
+    sel = runs[(runs.scene == scene) & (runs.study == "method")]
+    for name in [c for c in CURVES if c in set(sel.curve)]:
+        c = sel[(sel.curve == name) & sel.converged]
+        ax.loglog(c.seconds, np.maximum(c.err_rms, FLOOR), marker=markers[name],
+                  color=colours[name], label=CURVES[name].label)  # fmt: skip
+    sur = runs[(runs.scene == scene) & (runs.study == "surrogate")]
+    if len(sur):
+        ax.loglog(sur.seconds, sur.err_rms, "*", ms=11, color="k",
+                  label="surrogate (error vs converged)")  # fmt: skip
+    spatial = abs(ref[f"rms_N{plan.N}"] - ref["rms"]) / abs(ref["rms"])
+    ax.axhline(spatial, ls="--", lw=1, color=plotting.GREY,
+               label=f"N = {plan.N} vs converged (spatial error)")  # fmt: skip
+    ax.axhline(plan.target, ls=":", lw=1, color="r", label=f"target {plan.target:g}")
+    omega0, f_d = ref["omega0"], ref["f_d"]
+    ax.set_title(f"$\\Omega_0$ = {omega0:g} rad/s, $f_d$ = {f_d:g} Hz")
+    ax.set_xlabel("wall time [s]")
+    ax.set_ylabel("relative error of RMS($y_m$)")
+
+
+def _grid_panel(ax, runs: pd.DataFrame, scenes: list[str], plan: BenchPlan) -> None:
+    """The grid study (default curve, with and without Richardson), error vs converged."""
     grid = runs[runs.study == "grid"]
     for i, scene in enumerate(scenes):
         for curve, style in (("default", "o-"), ("default_richardson", "s--")):
             g = grid[(grid.scene == scene) & (grid.curve == curve) & grid.converged]
             g = g.sort_values("N")
             lab = scene if curve == "default" else f"{scene}, Richardson N, N/2"
-            ax.loglog(g.seconds, np.maximum(g.err_rms, floor), style, color=f"C{i}", label=lab)
+            ax.loglog(g.seconds, np.maximum(g.err_rms, FLOOR), style, color=f"C{i}", label=lab)
             if i == 0:
                 for _, r in g.iterrows():
-                    ax.annotate(f"N={r.N}", (r.seconds, max(r.err_rms, floor)), fontsize=7,
+                    ax.annotate(f"N={r.N}", (r.seconds, max(r.err_rms, FLOOR)), fontsize=7,
                                 xytext=(3, 3), textcoords="offset points")  # fmt: skip
     ax.axhline(plan.accept, ls=":", lw=1, color="r", label=f"accept {plan.accept:g}")
-    from matplotlib.ticker import LogLocator, NullFormatter
-
-    for a in axes:
-        a.xaxis.set_minor_formatter(NullFormatter())
-        a.yaxis.set_minor_formatter(NullFormatter())
-        a.xaxis.set_major_locator(LogLocator(base=10, numticks=12))
     ax.set_title("grid study (default), error vs converged")
     ax.set_xlabel("wall time [s]")
     ax.set_ylabel("relative error of RMS($y_m$)")
     ax.legend(fontsize=6, ncol=2)
-    handles, labels = axes[0].get_legend_handles_labels()
-    for ax in axes[len(scenes) + 1 :]:
-        ax.axis("off")
-    fig.legend(handles, labels, loc="lower center", ncol=3, fontsize=7, bbox_to_anchor=(0.5, 0.0))
-    fig.text(0.99, 0.005, f"errors below {floor:g} (agreement to round-off) are drawn at {floor:g}",
-             ha="right", va="bottom", fontsize=7, color=plotting.GREY)  # fmt: skip
-    fig.get_layout_engine().set(rect=(0, 0.12 + 0.1 * (nrows == 1), 1, 0.88 - 0.1 * (nrows == 1)))
-    plotting.save(fig, pdf, png)
 
 
 def write_outputs(runs: pd.DataFrame, refs: pd.DataFrame, plan: BenchPlan, stem: str) -> None:

@@ -85,39 +85,50 @@ def vs_full_figure(
     ax = fig.subplot_mosaic(mosaic)
     labels = iter("abcdefghijklmnop")
     for j, (line, cur) in enumerate(zip(fig4_lines, curves, strict=True)):
-        w0 = float(line["omega0"].iloc[0])
-        fn = float(line["f_n_hz"].iloc[0])
-        a, d = ax[f"rms{j}"], ax[f"d{j}"]
-        a.plot(line["f_d"] / fn, line["rms_dynamic"], "o", color=DYN, mfc="none",
-               label="full: dynamical")  # fmt: skip
-        a.plot(line["f_d"] / fn, line["rms_quasistatic"], "*", color=QS, label="full: quasi-static")
-        a.plot(cur["f_d"] / fn, cur["rms_dynamic"], "-", color=DYN, label="surrogate: dynamical")
-        a.plot(cur["f_d"] / fn, cur["rms_quasistatic"], "--", color=QS,
-               label="surrogate: quasi-static")  # fmt: skip
-        a.set_ylabel("RMS($y_m$)")
-        a.set_title(rf"$\Omega_0$ = {w0:g} rad/s")
-        d.semilogy(line["f_d"] / fn, line["delta_rms"], "o", color=DYN, mfc="none", label="full")
-        d.semilogy(cur["f_d"] / fn, cur["delta_rms"], "-", color=DYN, label="surrogate")
-        d.axhline(threshold, color="k", lw=0.8)
-        row = table[np.isclose(table["omega0"], w0)]
-        if not row.empty:
-            r = row.iloc[0]
-            for f, ls, lab in ((r["f_d_star_full_hz"], ":", "full"),
-                               (r["f_d_star_surrogate_hz"], "--", "surrogate")):  # fmt: skip
-                if np.isfinite(f):
-                    for x in (a, d):
-                        x.axvline(f / fn, color=ACCENT, ls=ls, lw=1.2,
-                                  label=rf"$f_d^\star/f_n$ {lab}" if x is d else None)  # fmt: skip
-            d.set_title(rf"$f_d^\star$: {100 * r['rel_diff']:+.1f} % (surrogate vs full)",
-                        fontsize=9)  # fmt: skip
-        d.set_ylabel(r"$\Delta$RMS")
-        d.set_xlabel("$f_d / f_n$")
-        a.legend(fontsize=6)
-        d.legend(fontsize=6)
-        panel_label(a, f"({next(labels)})")
-        panel_label(d, f"({next(labels)})")
-    pb, err = ax["pb"], ax["err"]
+        _line_panels(ax[f"rms{j}"], ax[f"d{j}"], line, cur, table, threshold, labels)
     t = table.sort_values("C_max")
+    _boundary_panel(ax["pb"], t, boundary, c_fit, labels)
+    _error_panel(ax["err"], t, tolerance, labels)
+    save(fig, pdf, png)
+
+
+def _line_panels(a, d, line: pd.DataFrame, cur: pd.DataFrame, table: pd.DataFrame,
+                 threshold: float, labels) -> None:  # fmt: skip
+    """RMS (a) and Delta RMS (d) of both models along f_d on one Fig. 4 line, with both f_d*."""
+    w0 = float(line["omega0"].iloc[0])
+    fn = float(line["f_n_hz"].iloc[0])
+    a.plot(line["f_d"] / fn, line["rms_dynamic"], "o", color=DYN, mfc="none",
+           label="full: dynamical")  # fmt: skip
+    a.plot(line["f_d"] / fn, line["rms_quasistatic"], "*", color=QS, label="full: quasi-static")
+    a.plot(cur["f_d"] / fn, cur["rms_dynamic"], "-", color=DYN, label="surrogate: dynamical")
+    a.plot(cur["f_d"] / fn, cur["rms_quasistatic"], "--", color=QS,
+           label="surrogate: quasi-static")  # fmt: skip
+    a.set_ylabel("RMS($y_m$)")
+    a.set_title(rf"$\Omega_0$ = {w0:g} rad/s")
+    d.semilogy(line["f_d"] / fn, line["delta_rms"], "o", color=DYN, mfc="none", label="full")
+    d.semilogy(cur["f_d"] / fn, cur["delta_rms"], "-", color=DYN, label="surrogate")
+    d.axhline(threshold, color="k", lw=0.8)
+    row = table[np.isclose(table["omega0"], w0)]
+    if not row.empty:
+        r = row.iloc[0]
+        for f, ls, lab in ((r["f_d_star_full_hz"], ":", "full"),
+                           (r["f_d_star_surrogate_hz"], "--", "surrogate")):  # fmt: skip
+            if np.isfinite(f):
+                for x in (a, d):
+                    x.axvline(f / fn, color=ACCENT, ls=ls, lw=1.2,
+                              label=rf"$f_d^\star/f_n$ {lab}" if x is d else None)  # fmt: skip
+        d.set_title(rf"$f_d^\star$: {100 * r['rel_diff']:+.1f} % (surrogate vs full)",
+                    fontsize=9)  # fmt: skip
+    d.set_ylabel(r"$\Delta$RMS")
+    d.set_xlabel("$f_d / f_n$")
+    a.legend(fontsize=6)
+    d.legend(fontsize=6)
+    panel_label(a, f"({next(labels)})")
+    panel_label(d, f"({next(labels)})")
+
+
+def _boundary_panel(pb, t: pd.DataFrame, boundary: pd.DataFrame, c_fit: float, labels) -> None:
+    """E*(C_max): the full model's roots, the surrogate's boundary, Eq. (analytical_sol)."""
     pb.loglog(t["C_max"], t["E_star_full"], "^", color="k", ms=7, label="full model (root)")
     pb.loglog(boundary["C_max"], boundary["E_star_surrogate"], "-", color=DYN, label="surrogate")
     pb.loglog(t["C_max"], t["E_star_surrogate"], "o", color=DYN, mfc="none")
@@ -129,6 +140,10 @@ def vs_full_figure(
     pb.set_ylabel(r"$\mathcal{E}^\star$")
     pb.legend(fontsize=7)
     panel_label(pb, f"({next(labels)})")
+
+
+def _error_panel(err, t: pd.DataFrame, tolerance: float, labels) -> None:
+    """The relative difference of f_d* per line, surrogate against full."""
     ok = t["within_tolerance"].astype(bool)
     err.axhspan(-100 * tolerance, 100 * tolerance, color=ACCENT, alpha=0.12,
                 label=rf"$\pm${100 * tolerance:g} %")  # fmt: skip
@@ -149,4 +164,3 @@ def vs_full_figure(
     )
     err.legend(fontsize=7)
     panel_label(err, f"({next(labels)})")
-    save(fig, pdf, png)
