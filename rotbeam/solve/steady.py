@@ -19,6 +19,10 @@ stepper's error).  An orbit that fails is left behind: the transient is followed
 A single period cannot expose a slowly growing instability (its multiplier would have to exceed
 1 / rho to show); that needs a Floquet analysis, which this check is not.
 Without damping no steady state is reached: we say so and return the last periods seen.
+
+`steady_state` runs these as named steps: `initial_state`, `tolerances` (rtol, the first-period
+check tolerance, the absolute scale), `march` (period by period with a `PeriodStepper`, which
+holds the wall-time deadline and counts evaluations) and `rms_window`.
 """
 
 from __future__ import annotations
