@@ -7,7 +7,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from ..analysis.verdict import Verdict
-from ..model.params import RotbeamInputError
+from ..config.errors import RotbeamInputError
 from ..simulate.scene import SceneResult
 from .style import DYN, QS, figure, save
 
