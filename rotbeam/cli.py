@@ -78,7 +78,7 @@ def build_parser() -> argparse.ArgumentParser:
 
     b = sub.add_parser("bench", help="work-precision benchmark (error against wall time)")
     b.add_argument("--quick", action="store_true", help="the small plan (2 scenes, 2 tolerances)")
-    b.add_argument("--config", help="YAML mapping of BenchPlan fields (see rotbeam/bench.py)")
+    b.add_argument("--config", help="YAML mapping of BenchPlan fields (see rotbeam/bench/plan.py)")
     b.add_argument("--out", default="results/performance/work_precision",
                    help="output stem: writes STEM.csv, .md, .pdf, .png")  # fmt: skip
     b.add_argument("--max-seconds", type=_finite, help="budget per run [s]")
@@ -158,20 +158,22 @@ def _scene_from_args(args: argparse.Namespace):
 def _write_series(path: str, series: dict[str, np.ndarray]) -> None:
     import pandas as pd
 
-    out = Path(path)
-    out.parent.mkdir(parents=True, exist_ok=True)
+    from .report.io import atomic_write
+
     df = pd.DataFrame(series)
-    tmp = out.with_name(out.name + ".part")
-    if out.suffix == ".parquet":  # suffix checked in cmd_simulate before the run
-        try:
-            df.to_parquet(tmp)
-        except ImportError:
-            raise RotbeamInputError(
-                "--out .parquet needs pyarrow or fastparquet (pip install pyarrow); use .csv"
-            ) from None
-    else:
-        df.to_csv(tmp, index=False)
-    tmp.replace(out)
+
+    def write(tmp: Path) -> None:
+        if Path(path).suffix == ".parquet":  # suffix checked in cmd_simulate before the run
+            try:
+                df.to_parquet(tmp)
+            except ImportError:
+                raise RotbeamInputError(
+                    "--out .parquet needs pyarrow or fastparquet (pip install pyarrow); use .csv"
+                ) from None
+        else:
+            df.to_csv(tmp, index=False)
+
+    atomic_write(path, write)
 
 
 def _check_threshold_flag(value: float) -> None:
@@ -184,7 +186,8 @@ def _check_threshold_flag(value: float) -> None:
 
 
 def cmd_simulate(args: argparse.Namespace) -> int:
-    from .analysis.verdict import check_plot_path, judge, plot_verdict
+    from .analysis.verdict import judge
+    from .report.verdict_plot import check_plot_path, plot_verdict
     from .simulate.scene import simulate
 
     scene = _scene_from_args(args)
@@ -287,7 +290,9 @@ def cmd_modes(args: argparse.Namespace) -> int:
 
 
 def cmd_bench(args: argparse.Namespace) -> int:
-    from .bench.benchmark import plan_from_dict, run_benchmark, write_outputs
+    from .bench.plan import plan_from_dict
+    from .bench.report import write_outputs
+    from .bench.run import run_benchmark
     from .config.scenefile import load_yaml
 
     spec: dict[str, Any] = {}

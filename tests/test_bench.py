@@ -8,14 +8,9 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from rotbeam.bench.benchmark import (
-    BenchPlan,
-    choose_default,
-    reference,
-    run_benchmark,
-    speedups,
-    write_outputs,
-)
+from rotbeam.bench.plan import BenchPlan
+from rotbeam.bench.report import choose_default, speedups, write_outputs
+from rotbeam.bench.run import reference, run_benchmark
 from rotbeam.model.params import Beam, Drive, Effects
 from rotbeam.simulate.scene import Scene, build_scene, simulate
 from rotbeam.solve.numerics import Numerics
@@ -138,7 +133,7 @@ def test_micro_benchmark_writes_every_output(tmp_path):
 
 
 def test_bad_plan_names_the_key():
-    from rotbeam.bench.benchmark import plan_from_dict
+    from rotbeam.bench.plan import plan_from_dict
     from rotbeam.config.errors import RotbeamInputError
 
     with pytest.raises(RotbeamInputError, match="curves.*nope"):
@@ -153,7 +148,7 @@ def test_bad_plan_names_the_key():
      ({"ref_N": ["x", 2, 3]}, "ref_N"), ({"grid": 5}, "grid")],
 )  # fmt: skip
 def test_malformed_plan_lists_name_the_key(spec, key):
-    from rotbeam.bench.benchmark import plan_from_dict
+    from rotbeam.bench.plan import plan_from_dict
     from rotbeam.config.errors import RotbeamInputError
 
     with pytest.raises(RotbeamInputError, match=f"benchmark.{key} = .*must be"):

@@ -72,7 +72,7 @@ def test_modes_dimensionless_matches_beta1():
     assert w[1] == pytest.approx(4.6940911330**2, rel=1e-3)
 
 
-# --- the verdict (rotbeam.verdict): --threshold and --plot -----------------------------------
+# --- the verdict (rotbeam.analysis.verdict): --threshold and --plot ------------------------------
 
 
 def test_cli_verdict_json_and_plot(tmp_path):

@@ -1,6 +1,6 @@
 """Hard cases stay numerically stable (issue #6).
 
-Every case runs the real solver (`rotbeam.scene.simulate`: quasi-static Newton, periodic
+Every case runs the real solver (`rotbeam.simulate.scene.simulate`: quasi-static Newton, periodic
 collocation, time stepping) and checks
 
 * no NaN/inf in any returned array, the reported RMS values are the RMS of the returned samples;
@@ -580,7 +580,7 @@ def test_overdamped_long_period_two_period_window():
     """The tiny beam of the previous test with a two-period RMS window (rms_periods = 2).
 
     One period is 13343 T and eta = 250: rho = exp(-eta P / 2) underflows to 0.0.  The solver
-    must still return a result (the contract of rotbeam.integrate: it never raises for a
+    must still return a result (the contract of rotbeam.solve.steady: it never raises for a
     solver failure), and the window of two periods must give the one-period RMS (periodic).
     """
     beam = fig7_beam(1e9, 1e-4, 0.01)

@@ -22,7 +22,7 @@ import pytest
 import rotbeam.simulate.sweeps
 from rotbeam.analysis.boundary import boundary_table, c_per_threshold, fit_c
 from rotbeam.model.params import Beam
-from rotbeam.report.io import write_csv
+from rotbeam.report.io import atomic_write, write_csv
 from rotbeam.simulate.sweeps import COLUMNS, scan_line
 from rotbeam.solve.numerics import Numerics
 
@@ -144,6 +144,37 @@ def test_killed_writer_leaves_no_file_at_the_final_path(tmp_path, kind, name, ex
         assert target.read_text() == "old, complete\n"
     else:
         assert not target.exists()
+
+
+def test_failed_write_removes_its_temporary_file(tmp_path):
+    target = tmp_path / "out" / "line.csv"
+
+    def half_then_fail(tmp):
+        tmp.write_text("a,b\n1,")
+        raise OSError("disk full")
+
+    with pytest.raises(OSError, match="disk full"):
+        atomic_write(target, half_then_fail)
+    assert list(target.parent.iterdir()) == []
+
+
+def test_figures_and_time_series_are_written_through_the_atomic_writer(tmp_path):
+    """One writer for every file: a figure's format comes from its final suffix although the
+    temporary name ends in .part (matplotlib would refuse 'part'), nothing is left beside it."""
+    import matplotlib.pyplot as plt
+
+    from rotbeam.cli import _write_series
+    from rotbeam.report.style import save
+
+    fig, ax = plt.subplots()
+    ax.plot([0, 1], [1, 0])
+    save(fig, tmp_path / "f.pdf", tmp_path / "f.png")
+    assert (tmp_path / "f.pdf").read_bytes()[:5] == b"%PDF-"
+    assert (tmp_path / "f.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    _write_series(str(tmp_path / "s" / "series.csv"), {"t_s": np.arange(3.0), "y": np.ones(3)})
+    assert pd.read_csv(tmp_path / "s" / "series.csv").shape == (3, 2)
+    names = sorted(f.name for f in tmp_path.rglob("*") if f.is_file())
+    assert names == ["f.pdf", "f.png", "series.csv"]
 
 
 # --- (4) interrupt the quick workflow, rerun: only unfinished jobs run ----------------------------

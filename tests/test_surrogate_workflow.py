@@ -17,20 +17,19 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from rotbeam.config.schema import merge_config
-from rotbeam.model.criterion import critical_from_scan
-from rotbeam.model.params import Beam, Dimensionless, Drive, Effects, drive_groups
-from rotbeam.model.surrogate import steady_rms
-from rotbeam.report.surrogate_figures import (
+from rotbeam.analysis.surrogate_study import (
     peak_of_line,
-    southwell_figure,
     southwell_table,
     surrogate_boundary,
     surrogate_curve,
     validity_statement,
-    vs_full_figure,
     vs_full_table,
 )
+from rotbeam.config.schema import merge_config
+from rotbeam.model.criterion import critical_from_scan
+from rotbeam.model.params import Beam, Dimensionless, Drive, Effects, drive_groups
+from rotbeam.model.surrogate import steady_rms
+from rotbeam.report.surrogate_figures import southwell_figure, vs_full_figure
 from rotbeam.simulate.sweeps import resonance_frequency_hz
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -18,20 +18,20 @@ threshold (`_lag_ratio`); the estimate then comes from there.
 
 `critical_frequency` answers the other way round: f_d* of the full model at one speed, by root
 finding started at that estimate (the CLI's `rotbeam critical`).
+The verdict's figure is `rotbeam.report.verdict_plot`.
 """
 
 from __future__ import annotations
 
 import math
 import time
+from collections.abc import Callable
 from dataclasses import dataclass
-from pathlib import Path
 
 from ..config.checks import check_threshold
 from ..config.errors import RotbeamInputError
 from ..model.params import Beam, Drive, Effects
 from ..model.secondorder import c0_root
-from ..report.style import DYN, QS, figure, save
 from ..simulate.scene import Scene, SceneResult, simulate
 from ..simulate.sweeps import resonance_frequency_hz
 from ..solve.numerics import Numerics
@@ -90,45 +90,6 @@ def linear_estimate(zeta: float, threshold: float) -> tuple[float, float, str]:
         return math.nan, _lag_ratio(zeta, threshold), f", where the response lags (zeta {zeta:.3g})"
 
 
-#: File types `plot_verdict` writes.
-PLOT_SUFFIXES = (".png", ".pdf", ".svg")
-
-
-def check_plot_path(path: str | Path) -> Path:
-    """The --plot path, if its suffix is one `plot_verdict` writes (checked before a run)."""
-    path = Path(path)
-    if path.suffix not in PLOT_SUFFIXES:
-        raise RotbeamInputError(f"--plot must end in {', '.join(PLOT_SUFFIXES)}, got {str(path)!r}")
-    return path
-
-
-def plot_verdict(result: SceneResult, verdict: Verdict, path: str | Path) -> None:
-    """y_m over the steady window, dynamic against quasi-static, with the verdict and the cost."""
-    path = check_plot_path(path)
-    series = result.time_series()
-    t = series["t_s"] - series["t_s"][0]
-    scene = result.scene
-    drive, num = scene.drive, scene.numerics
-    fig, ax = figure(width=7.0, height=3.8)
-    ax.plot(t, series["y_m_dynamic"], color=DYN,
-            label=f"dynamical, RMS {result.rms_dynamic:.4g}")  # fmt: skip
-    ax.plot(t, series["y_m_quasistatic"], "--", color=QS,
-            label=f"quasi-static, RMS {result.rms_quasistatic:.4g}")  # fmt: skip
-    ax.set_xlabel("t [s] (steady state)")
-    ax.set_ylabel("$y_m / L$ (midspan)")
-    where = f"$f_d / f_0$ = {drive.f_d / verdict.f0_hz:.3g}, $f_0$ = {verdict.f0_hz:.3g} Hz"
-    where += f"; linear estimate $f_d^*$ = {verdict.fd_star_estimate_hz:.3g} Hz"
-    ax.set_title(
-        rf"$\Omega_0$ = {drive.omega0:g} rad/s, a = {drive.amplitude:g} rad/s, "
-        rf"$f_d$ = {drive.f_d:g} Hz" + f"\n{where}\n" + verdict.text.split(" (")[0],
-        loc="left",
-    )
-    cost = f"computed in {result.seconds:.3g} s (N = {num.N}, {num.method}"
-    cost += ", Richardson-extrapolated RMS)" if result.extrapolation else ")"
-    ax.legend(title=cost, loc="upper center", bbox_to_anchor=(0.5, -0.2), ncol=2)
-    save(fig, path)
-
-
 def _lag_ratio(zeta: float, threshold: float) -> float:
     """Where the canonical oscillator's response falls below its static one by the threshold:
     sqrt((1 - c^2)^2 + (2 zeta c)^2) = 1 + threshold, i.e. c^4 - 2 B c^2 + 1 - (1 + t)^2 = 0 with
@@ -173,6 +134,57 @@ BRACKET_FACTOR = 1.25
 MAX_STEPS = 12
 
 
+class _Excess:
+    """Delta RMS - threshold of the full model at one speed, as a function of f_d.  Each f_d runs
+    once (brentq evaluates the bracket ends again) and the last orbit seeds the next collocation;
+    a run without a steady state raises _NoSteadyState."""
+
+    def __init__(
+        self,
+        beam: Beam,
+        omega0: float,
+        amplitude: float,
+        effects: Effects,
+        numerics: Numerics,
+        th: float,
+    ) -> None:
+        self.beam, self.omega0, self.amplitude = beam, omega0, amplitude
+        self.effects, self.numerics, self.th = effects, numerics, th
+        self.seen: dict[float, float] = {}  #: f_d -> Delta RMS, in the order run
+        self.guess = None
+
+    def __call__(self, f_d: float) -> float:
+        if f_d not in self.seen:
+            drive = Drive(self.omega0, self.amplitude, f_d)
+            res = simulate(Scene(self.beam, drive, self.effects, self.numerics), guess=self.guess)
+            if not res.converged or not math.isfinite(res.delta_rms):
+                raise _NoSteadyState(
+                    f"no steady state at f_d = {f_d:.4g} Hz: {res.dynamic.message}"
+                )
+            orbit = res.dynamic.periodic
+            self.guess = orbit.theta.T if orbit is not None and orbit.converged else None
+            self.seen[f_d] = res.delta_rms
+        return self.seen[f_d] - self.th
+
+
+def _bracket(
+    excess: Callable[[float], float], f: float, g: float, th: float
+) -> tuple[float, float] | str:
+    """From f (where excess(f) = g != 0) step by BRACKET_FACTOR towards the threshold until
+    excess changes sign: the bracket (lo, hi), or why there is none within MAX_STEPS."""
+    start = f
+    step = BRACKET_FACTOR if g < 0 else 1.0 / BRACKET_FACTOR
+    for _ in range(MAX_STEPS):
+        g_next = excess(f * step)
+        if g_next == 0.0 or (g_next > 0) != (g > 0):
+            lo, hi = sorted((f, f * step))
+            return lo, hi
+        f, g = f * step, g_next
+    side = "below" if step > 1 else "above"
+    return (f"Delta RMS stays {side} {th:g} from {start:.4g} Hz to {f:.4g} Hz ({MAX_STEPS} "
+            f"steps of x{step:.3g})")  # fmt: skip
+
+
 def critical_frequency(
     beam: Beam,
     omega0: float,
@@ -202,42 +214,20 @@ def critical_frequency(
     t0 = time.perf_counter()
     f0 = resonance_frequency_hz(beam, omega0, amplitude)
     start = estimate = linear_estimate(beam.derived()["zeta"], th)[1] * f0
-    seen: dict[float, float] = {}  # f_d -> Delta RMS; brentq evaluates the bracket ends again
-    guess = None  # the last orbit seeds the next collocation
-
-    def excess(f_d: float) -> float:
-        nonlocal guess
-        if f_d not in seen:
-            scene = Scene(beam, Drive(omega0, amplitude, f_d), effects, numerics)
-            res = simulate(scene, guess=guess)
-            if not res.converged or not math.isfinite(res.delta_rms):
-                raise _NoSteadyState(
-                    f"no steady state at f_d = {f_d:.4g} Hz: {res.dynamic.message}"
-                )
-            orbit = res.dynamic.periodic
-            guess = orbit.theta.T if orbit is not None and orbit.converged else None
-            seen[f_d] = res.delta_rms
-        return seen[f_d] - th
+    excess = _Excess(beam, omega0, amplitude, effects, numerics, th)
 
     def done(found: bool, f: float, msg: str) -> Critical:
-        visited = list(seen.items())
+        visited = list(excess.seen.items())
         return Critical(found, f, th, f0, estimate, visited, time.perf_counter() - t0, msg)
 
     try:
-        f, g = start, excess(start)
+        g = excess(start)
         if g == 0.0:
-            return done(True, f, "Delta RMS equals the threshold at the start")
-        step = BRACKET_FACTOR if g < 0 else 1.0 / BRACKET_FACTOR
-        for _ in range(MAX_STEPS):
-            g_next = excess(f * step)
-            if g_next == 0.0 or (g_next > 0) != (g > 0):
-                lo, hi = sorted((f, f * step))
-                break
-            f, g = f * step, g_next
-        else:
-            side = "below" if step > 1 else "above"
-            return done(False, math.nan, f"Delta RMS stays {side} {th:g} from {start:.4g} Hz to "
-                        f"{f:.4g} Hz ({MAX_STEPS} steps of x{step:.3g})")  # fmt: skip
+            return done(True, start, "Delta RMS equals the threshold at the start")
+        bracket = _bracket(excess, start, g, th)
+        if isinstance(bracket, str):
+            return done(False, math.nan, bracket)
+        lo, hi = bracket
         root = brentq(excess, lo, hi, rtol=rtol, xtol=1e-12 * hi)
     except _NoSteadyState as exc:
         return done(False, math.nan, str(exc))

@@ -212,6 +212,8 @@ def solve_static_bvp(
     nodes: int = 101,
     guess: BVPSolution | None = None,
 ) -> BVPSolution:
+    # Over 60 lines as one named step: the equations, boundary conditions and first guess of the
+    # BVP share the load scale eps and exist only for this one solve_bvp call.
     """The continuum static elastica under constant (lam, lam_dot), by scipy.integrate.solve_bvp.
 
     Unknowns (theta, theta_s, x, y, n_x, n_y); theta, theta_s, y, n_y are divided by a load scale

@@ -1,24 +1,32 @@
-"""Atomic writers: a killed job leaves no file that looks complete."""
+"""Atomic writers: a killed job leaves no file that looks complete.
+
+Every file rotbeam writes goes through `atomic_write` (tables, text and JSON here, figures in
+`rotbeam.report.style.save`, the time series of `rotbeam simulate --out`).
+"""
 
 from __future__ import annotations
 
 import json
 import os
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
 import pandas as pd
 
 
-def _tmp(path: Path) -> Path:
+def temporary_name(path: Path) -> Path:
+    """The hidden name `path` is written under first: same folder (so the rename is atomic),
+    the process id (two writers never share it), ending in `.part` (a leftover says what it is)."""
     return path.with_name(f".{path.name}.{os.getpid()}.part")
 
 
-def _atomic(path: str | Path, write) -> None:
-    """write(tmp) then rename onto `path`; the temporary file is removed if writing fails."""
+def atomic_write(path: str | Path, write: Callable[[Path], object]) -> None:
+    """write(tmp) to `temporary_name(path)`, then rename it onto `path`: a killed job leaves no
+    file at `path` that looks complete.  The temporary file is removed if writing fails."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    tmp = _tmp(path)
+    tmp = temporary_name(path)
     try:
         write(tmp)
         tmp.replace(path)
@@ -27,11 +35,11 @@ def _atomic(path: str | Path, write) -> None:
 
 
 def write_csv(df: pd.DataFrame, path: str | Path) -> None:
-    _atomic(path, lambda tmp: df.to_csv(tmp, index=False))
+    atomic_write(path, lambda tmp: df.to_csv(tmp, index=False))
 
 
 def write_text(text: str, path: str | Path) -> None:
-    _atomic(path, lambda tmp: tmp.write_text(text))
+    atomic_write(path, lambda tmp: tmp.write_text(text))
 
 
 def write_json(data: Any, path: str | Path) -> None:

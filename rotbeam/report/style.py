@@ -2,13 +2,14 @@
 
 from __future__ import annotations
 
-import os
 from pathlib import Path
 
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+
+from .io import atomic_write  # noqa: E402
 
 STYLE = {
     "figure.dpi": 100,
@@ -42,15 +43,14 @@ def figure(nrows: int = 1, ncols: int = 1, width: float = 6.4, height: float = 4
 
 
 def save(fig, pdf: str | Path, png: str | Path | None = None) -> None:
-    """Write the figure as PDF (and PNG) through temporary names, then close it."""
+    """Write the figure as PDF (and PNG) atomically (`io.atomic_write`), then close it.  The
+    format comes from the final name's suffix (the temporary name ends in `.part`)."""
     for path in (pdf, png):
         if path is None:
             continue
         path = Path(path)
-        path.parent.mkdir(parents=True, exist_ok=True)
-        tmp = path.with_name(f".{path.stem}.{os.getpid()}.part{path.suffix}")
-        fig.savefig(tmp)
-        tmp.replace(path)
+        fmt = path.suffix.lstrip(".")
+        atomic_write(path, lambda tmp, fmt=fmt: fig.savefig(tmp, format=fmt))
     plt.close(fig)
 
 

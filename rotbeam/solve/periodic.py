@@ -11,7 +11,7 @@ is driven to zero by Newton with the exact block Jacobian
 J[j, k] = delta_jk dR_j/dTheta_j + D_jk dR_j/dV_j + (D^2)_jk M(Theta_j).
 
 The cost does not depend on the damping (no transient to wait for).  It finds *a* periodic
-solution, not necessarily the one the beam settles on: `rotbeam.integrate.steady_state` with
+solution, not necessarily the one the beam settles on: `rotbeam.solve.steady.steady_state` with
 start="periodic" uses it as the initial state and keeps integrating until its transient criterion
 holds, so an unstable or wrong orbit is left behind rather than reported.
 """
@@ -193,6 +193,21 @@ def linear_guess(dl: Dimensionless, N: int, tau: np.ndarray) -> np.ndarray:
     return np.real(amp[None, :] * np.exp(1j * dl.omega * tau)[:, None])
 
 
+def _line_search(
+    col: Collocation, X: np.ndarray, step: np.ndarray, rn: float
+) -> tuple[float, np.ndarray, np.ndarray, float]:
+    """Halve the Newton step until the residual's max-norm falls below rn (or t < 1e-3); returns
+    (t, X + t step, its residual, its max-norm)."""
+    t = 1.0
+    while True:
+        Xt = X + t * step
+        Rt = col.residual(Xt)
+        rt = float(np.max(np.abs(Rt)))
+        if np.isfinite(rt) and (rt < rn or t < 1e-3):
+            return t, Xt, Rt, rt
+        t *= 0.5
+
+
 def solve_periodic(
     dl: Dimensionless,
     N: int = 40,
@@ -230,15 +245,7 @@ def solve_periodic(
         if krylov > 2 * max(first_krylov, 5):
             inv = None  # the preconditioner went stale: rebuild it at the next step
         first_krylov = first_krylov or krylov
-        t = 1.0
-        while True:
-            Xt = X + t * step
-            Rt = col.residual(Xt)
-            rt = float(np.max(np.abs(Rt)))
-            if np.isfinite(rt) and (rt < rn or t < 1e-3):
-                break
-            t *= 0.5
-        X, R, rn = Xt, Rt, rt
+        t, X, R, rn = _line_search(col, X, step, rn)
         if not np.isfinite(rn):
             msg = "residual not finite"
             break

@@ -1,7 +1,7 @@
 """Trigonometric (Fourier) tools on M equispaced instants of one period.
 
 Shared by the periodic collocation (`rotbeam.periodic`) and the steady state it seeds
-(`rotbeam.integrate`): differentiation, interpolation to other instants and the harmonic tail
+(`rotbeam.solve.steady`): differentiation, interpolation to other instants and the harmonic tail
 that says whether M instants resolve the signal.
 """
 

@@ -19,6 +19,10 @@ stepper's error).  An orbit that fails is left behind: the transient is followed
 A single period cannot expose a slowly growing instability (its multiplier would have to exceed
 1 / rho to show); that needs a Floquet analysis, which this check is not.
 Without damping no steady state is reached: we say so and return the last periods seen.
+
+`steady_state` runs these as named steps: `initial_state`, `tolerances` (rtol, the first-period
+check tolerance, the absolute scale), `march` (period by period with a `PeriodStepper`, which
+holds the wall-time deadline and counts evaluations) and `rms_window`.
 """
 
 from __future__ import annotations
@@ -154,6 +158,253 @@ def _from_collocation(
     )
 
 
+@dataclass(frozen=True)
+class Tolerances:
+    """What the stepper is asked for, derived from `Numerics` and the slowest transient."""
+
+    rho: float  #: decay factor of the slowest transient over one period (1: none decays)
+    rtol: float  #: relative tolerance while following a transient (see `tolerances`)
+    rtol_first: float  #: ... in the first period, looser when it only checks a collocated orbit
+    scale: float  #: size of Theta behind the absolute tolerance
+    wref: float  #: velocities are compared divided by this (max(omega, 1))
+
+    def atol(self, r: float, n: int) -> np.ndarray:
+        """Absolute tolerances of the state (Theta, Theta_t) at relative tolerance r."""
+        return np.concatenate([np.full(n, r * self.scale), np.full(n, r * self.scale * self.wref)])
+
+
+def tolerances(
+    model: DiscreteElastica,
+    dl: Dimensionless,
+    num: Numerics,
+    z: np.ndarray,
+    response_scale: float | None,
+    periodic: PeriodicResult | None,
+) -> Tolerances:
+    """The stepper's tolerances for a march from the state z.
+
+    The per-period integration error must stay below what the transient bound can tell apart:
+    rtol <= 0.1 ss_tol (1 - rho).  From a converged collocated orbit the first period only has to
+    confirm it: its difference d passes when d rho / (1 - rho) <= ss_tol, so an integration error
+    a third of that threshold suffices, whatever `rtol` asks of a transient (the reported samples
+    are then the collocation's, accurate to its harmonic tail).  Should the check fail, the
+    following periods follow the transient at the tight `rtol` and their samples are reported.
+    The absolute tolerance scales with the quasi-static response size if known (`response_scale`),
+    else with the initial state, else with a rough linear estimate; never with more than a
+    converged orbit's size: an overdamped beam driven above its corner frequency moves far less
+    than quasi-statically (x140 for Fig. 7's E = 1e5 Pa, L = 0.1 mm beam), and an atol sized by
+    the quasi-static response lets the stepper's error swamp the transient bound, which then
+    stalls above ss_tol until max_tau.
+    """
+    n = model.n
+    from_orbit = periodic is not None and periodic.converged
+    scale = response_scale if response_scale else float(np.max(np.abs(z[:n])))
+    if from_orbit:
+        orbit = float(np.max(np.abs(periodic.theta)))
+        scale = min(scale, orbit) if orbit > 0.0 and math.isfinite(orbit) else scale
+    if not scale or not math.isfinite(scale):
+        scale = abs(dl.alpha * dl.omega) * (dl.hub_ratio + 1.0) / 8.0 or 1.0
+    wref = max(dl.omega, 1.0)
+    rho = math.exp(-slowest_decay_rate(model, dl) * dl.period)
+    rtol = min(num.rtol, 0.1 * num.ss_tol * (1.0 - rho)) if rho < 1.0 else num.rtol
+    rtol = max(rtol, 1e-12)
+    check = min(1e-2, num.ss_tol * (1.0 - rho) / (3.0 * rho)) if from_orbit and 0 < rho < 1 else 0.0
+    return Tolerances(rho=rho, rtol=rtol, rtol_first=max(rtol, check), scale=scale, wref=wref)
+
+
+class PeriodStepper:
+    """One `solve_ivp` over whole drive periods, within the wall-time deadline; counts the
+    right-hand side and Jacobian evaluations over all its calls (`nfev`, `njev`)."""
+
+    def __init__(
+        self,
+        model: DiscreteElastica,
+        dl: Dimensionless,
+        num: Numerics,
+        tol: Tolerances,
+        deadline: float,
+    ) -> None:
+        self.model, self.dl, self.num, self.tol = model, dl, num, tol
+        self.n = model.n
+        self.rhs = first_order_rhs(model, dl, deadline)
+        self.jac = self._jacobian if num.jacobian == "exact" else None
+        if num.method == "TRBDF2":
+            from .trbdf2 import TRBDF2
+
+            self.method: str | type = TRBDF2
+        else:
+            self.method = num.method
+        self.nfev = self.njev = 0
+
+    def _jacobian(self, tau: float, z: np.ndarray) -> np.ndarray:
+        n, dl = self.n, self.dl
+        return self.model.first_order_jacobian(z[:n], z[n:], dl.lam(tau), dl.lam_dot(tau))
+
+    def periods(self, k: int, count: int, z: np.ndarray, t_eval: np.ndarray, rtol: float):
+        """solve_ivp from tau = k P over `count` periods; None when the wall-time budget ran out."""
+        P = self.dl.period
+        try:
+            sol = solve_ivp(
+                self.rhs, (k * P, (k + count) * P), z, method=self.method, rtol=rtol,
+                atol=self.tol.atol(rtol, self.n), jac=self.jac, t_eval=t_eval,
+            )  # fmt: skip
+        except OutOfTime:
+            return None
+        self.nfev += sol.nfev
+        self.njev += sol.njev
+        return sol
+
+
+def _out_of_time(num: Numerics, k: int, P: float, bound: float) -> str:
+    return (
+        f"no steady state within the time budget of {num.max_seconds:g} s "
+        f"({k} whole periods, tau={k * P:.4g}); remaining transient bound {bound:.3g}"
+    )
+
+
+def transient_bound(d: float, rho: float, size: float) -> float:
+    """Bound on the remaining transient relative to the response: d rho / (1 - rho) / size."""
+    if d == 0.0:  # an exact fixed point of the period map (also undamped: rho = 1)
+        return 0.0
+    if rho < 1.0:
+        return d * rho / (1.0 - rho) / size
+    return math.inf
+
+
+def window_reach(d: float, rho: float, p: int) -> float:
+    """Factor r such that the state p periods back is within d r of the steady state:
+    |Z_{k-p} - Z_inf| <= d (sum_{q<p} rho^-q + rho / (1 - rho))."""
+    if d == 0.0:  # an exact fixed point of the period map (also undamped: rho = 1)
+        return 0.0
+    if rho > 0.0:  # bound <= ss_tol with d > 0 means rho < 1
+        return sum(rho**-q for q in range(p)) + rho / (1.0 - rho)
+    return math.inf
+
+
+@dataclass
+class March:
+    """Where `march` stopped and why."""
+
+    z: np.ndarray  #: state after the last whole period
+    last: tuple[np.ndarray, np.ndarray]  #: (tau, Theta) samples of the last period seen
+    status: int = 1  #: 0 steady, 1 no steady state within budget, -1 integrator failure
+    message: str = ""
+    k: int = 0  #: whole periods integrated
+    bound: float = math.inf  #: last transient bound
+    history: list[float] = field(default_factory=list)  #: transient bound per period
+    window: list[tuple[np.ndarray, np.ndarray]] = field(default_factory=list)  #: last periods
+    reusable: bool = False  #: `window` is within ss_tol of the steady state from its first instant
+
+
+def march(
+    stepper: PeriodStepper,
+    z: np.ndarray,
+    from_orbit: bool,
+    progress: Callable[[int, float], None] | None = None,
+) -> March:
+    """Period after period from the state z until the transient bound is below ss_tol, the
+    budget (max_periods, max_tau, max_seconds) is spent or the integrator fails."""
+    dl, num, tol, n = stepper.dl, stepper.num, stepper.tol, stepper.n
+    P, m, p = dl.period, num.samples_per_period, num.rms_periods
+    # from a converged collocated orbit one period measures its distance to the time-stepped
+    # orbit; from any other start the first period's difference may be a lucky crossing
+    min_periods = 1 if from_orbit else 2
+    max_periods = min(num.max_periods, max(2, int(num.max_tau / P)))
+    if stepper.model.eta == 0.0:  # no transient ever decays: show a few periods and say so
+        max_periods = min(max_periods, max(2, p))
+    out = March(z=z, last=(np.array([0.0]), z[:n, None].copy()))
+    while out.k < max_periods:
+        k = out.k
+        t_eval = np.append(period_samples(dl, k, 1, m), (k + 1) * P)
+        sol = stepper.periods(k, 1, out.z, t_eval, tol.rtol_first if k == 0 else tol.rtol)
+        if sol is None:
+            out.message = _out_of_time(num, k, P, out.bound)
+            return out
+        if sol.status < 0 or not np.all(np.isfinite(sol.y)):
+            out.status, out.message = -1, f"integrator failed in period {k + 1}: {sol.message}"
+            return out
+        out.last = (sol.t[:-1], sol.y[:n, :-1])
+        z_new = sol.y[:, -1]
+        out.k = k = k + 1
+        size = max(float(np.max(np.abs(sol.y[:n]))), 1e-300)
+        d = max(
+            float(np.max(np.abs(z_new[:n] - out.z[:n]))),
+            float(np.max(np.abs(z_new[n:] - out.z[n:]))) / tol.wref,
+        )
+        out.z = z_new
+        out.bound = transient_bound(d, tol.rho, size)
+        out.history.append(out.bound)
+        if progress is not None:
+            progress(k, out.bound)
+        out.window.append(out.last)
+        del out.window[:-p]
+        if k >= min_periods and out.bound <= num.ss_tol:
+            out.status, out.message = 0, f"steady after {k} periods"
+            # the periods just integrated serve as the RMS window when even their first sample
+            # is within ss_tol of the steady state
+            reach = window_reach(d, tol.rho, p)
+            out.reusable = k >= p and len(out.window) == p and d * reach / size <= num.ss_tol
+            return out
+    out.message = (
+        f"no steady state within {max_periods} periods (tau={out.k * P:.4g}); "
+        f"remaining transient bound {out.bound:.3g} > ss_tol {num.ss_tol:g}"
+        + ("; undamped model has no steady state" if stepper.model.eta == 0 else "")
+    )
+    return out
+
+
+@dataclass
+class Window:
+    """The RMS window: samples, and the march's outcome as the window leaves it."""
+
+    tau: np.ndarray
+    theta: np.ndarray
+    status: int
+    message: str
+    periods: int  #: drive periods integrated in all
+
+
+def rms_window(
+    stepper: PeriodStepper, run: March, periodic: PeriodicResult | None, from_orbit: bool
+) -> Window:
+    """The samples to report once the march stopped.
+
+    A collocated orbit that passed its one-period check is reported itself (spectrally accurate,
+    exact trigonometric samples, rather than the stepper's, whose error is its tolerance); else
+    the periods just integrated when they are close enough (`March.reusable`); else `rms_periods`
+    more periods are integrated and sampled.  Without a steady state: the last period seen.
+    """
+    dl, num, n = stepper.dl, stepper.num, stepper.n
+    p, m, k = num.rms_periods, num.samples_per_period, run.k
+    if run.status != 0:
+        return Window(*run.last, run.status, run.message, k)
+    if k == 1 and from_orbit and periodic.harmonic_tail <= num.tail_tol:
+        return Window(
+            period_samples(dl, 0, p, m),
+            np.tile(trig_interpolate(periodic.theta.T, m).T, (1, p)),
+            0,
+            f"collocation orbit (M={periodic.M}, harmonic tail {periodic.harmonic_tail:.2g}) "
+            f"verified by one period of time stepping (transient bound {run.bound:.2g})",
+            k,
+        )
+    if run.reusable:
+        return Window(
+            np.concatenate([w[0] for w in run.window]),
+            np.concatenate([w[1] for w in run.window], axis=1),
+            0,
+            run.message + f" (RMS window: the last {p} of them)",
+            k,
+        )
+    taus = period_samples(dl, k, p, m)
+    sol = stepper.periods(k, p, run.z, taus, stepper.tol.rtol)
+    if sol is None:
+        msg = _out_of_time(num, k, dl.period, run.bound) + " (in the RMS window)"
+        return Window(*run.last, 1, msg, k)
+    if sol.status < 0 or sol.y.shape[1] != taus.size or not np.all(np.isfinite(sol.y)):
+        return Window(*run.last, -1, f"integrator failed in the RMS window: {sol.message}", k)
+    return Window(taus, sol.y[:n], 0, run.message, k + p)
+
+
 def steady_state(
     dl: Dimensionless,
     numerics: Numerics | None = None,
@@ -163,185 +414,35 @@ def steady_state(
 ) -> SteadyState:
     """Integrate from `numerics.start` until the periodic steady state, then sample it.
 
-    With numerics.integrate = False (and start = "periodic") the collocation result is returned
-    as it is: fastest, but not checked by time stepping.  `guess` (M, N-1) seeds the collocation
-    (continuation along a sweep).
+    The steps: the initial state (`initial_state`), the stepper's tolerances (`tolerances`), the
+    march period by period to the steady state (`march`, with a `PeriodStepper`), the RMS window
+    (`rms_window`).  With numerics.integrate = False (and start = "periodic") the collocation
+    result is returned as it is: fastest, but not checked by time stepping.  `guess` (M, N-1)
+    seeds the collocation (continuation along a sweep).
     """
     num = numerics if numerics is not None else Numerics()
     t0 = time.perf_counter()
     model = DiscreteElastica(num.N, dl.hub_ratio, dl.eta, dl.effects)
-    n = model.n
-    P = dl.period
-    m = num.samples_per_period
     z, periodic = initial_state(model, dl, num.start, num.tail_tol, guess)
     if not num.integrate and periodic is not None:
         return _from_collocation(model, dl, num, periodic, t0)
-
-    # scale for absolute tolerances: the quasi-static response size if known, but never more
-    # than a converged orbit's: an overdamped beam driven above its corner frequency moves far
-    # less than quasi-statically (x140 for Fig. 7's E=1e5, L=0.1 mm), and an atol sized by the
-    # quasi-static response then lets the stepper's error swamp the transient bound, which stalls
-    # above ss_tol until max_tau
-    scale = response_scale if response_scale else float(np.max(np.abs(z[:n])))
-    if periodic is not None and periodic.converged:
-        orbit = float(np.max(np.abs(periodic.theta)))
-        scale = min(scale, orbit) if orbit > 0.0 and math.isfinite(orbit) else scale
-    if not scale or not math.isfinite(scale):
-        scale = abs(dl.alpha * dl.omega) * (dl.hub_ratio + 1.0) / 8.0 or 1.0
-    wref = max(dl.omega, 1.0)
-    rho = math.exp(-slowest_decay_rate(model, dl) * P)
-    # the per-period integration error must stay below what the transient bound can tell apart
-    rtol = min(num.rtol, 0.1 * num.ss_tol * (1.0 - rho)) if rho < 1.0 else num.rtol
-    rtol = max(rtol, 1e-12)
-    # From a converged collocated orbit the first period only has to confirm it: its difference
-    # d passes when d rho / (1 - rho) <= ss_tol, so an integration error a third of that
-    # threshold suffices, whatever `rtol` asks of a transient (the reported samples are then the
-    # collocation's, accurate to its harmonic tail).  Should the check fail, the following
-    # periods follow the transient at the tight `rtol` and their samples are reported.
     from_orbit = periodic is not None and periodic.converged
-    check = min(1e-2, num.ss_tol * (1.0 - rho) / (3.0 * rho)) if from_orbit and 0 < rho < 1 else 0.0
-    rtol_first = max(rtol, check)
-
-    def atol_for(r: float) -> np.ndarray:
-        return np.concatenate([np.full(n, r * scale), np.full(n, r * scale * wref)])
-
-    nfev = njev = 0
-
-    deadline = t0 + num.max_seconds
-
-    rhs = first_order_rhs(model, dl, deadline)
-
-    def jac(tau, z):
-        return model.first_order_jacobian(z[:n], z[n:], dl.lam(tau), dl.lam_dot(tau))
-
-    method = num.method
-    if method == "TRBDF2":
-        from .trbdf2 import TRBDF2 as method
-
-    def run(tau_a, tau_b, z_a, t_eval, r=rtol):
-        """solve_ivp over [tau_a, tau_b]; None when the wall-time budget ran out."""
-        nonlocal nfev, njev
-        try:
-            sol = solve_ivp(
-                rhs, (tau_a, tau_b), z_a, method=method, rtol=r, atol=atol_for(r),
-                jac=jac if num.jacobian == "exact" else None, t_eval=t_eval,
-            )  # fmt: skip
-        except OutOfTime:
-            return None
-        nfev += sol.nfev
-        njev += sol.njev
-        return sol
-
-    def out_of_time(k: int) -> str:
-        return (
-            f"no steady state within the time budget of {num.max_seconds:g} s "
-            f"({k} whole periods, tau={k * P:.4g}); remaining transient bound {bound:.3g}"
-        )
-
-    # from a converged collocated orbit one period measures its distance to the time-stepped
-    # orbit; from any other start the first period's difference may be a lucky crossing
-    min_periods = 1 if from_orbit else 2
-    history: list[float] = []
-    window: list[tuple[np.ndarray, np.ndarray]] = []  #: the last rms_periods periods seen
-    reuse = False
-    k = 0
-    converged = False
-    status, message = 1, ""
-    bound = math.inf
-    seen_tau, seen_theta = np.array([0.0]), z[:n, None].copy()  # what we saw last
-    max_periods = min(num.max_periods, max(2, int(num.max_tau / P)))
-    if model.eta == 0.0:  # no transient ever decays: show a few periods and say so
-        max_periods = min(max_periods, max(2, num.rms_periods))
-    while k < max_periods:
-        taus_k = period_samples(dl, k, 1, m)
-        sol = run(
-            k * P, (k + 1) * P, z, np.append(taus_k, (k + 1) * P), rtol_first if k == 0 else rtol
-        )
-        if sol is None:
-            message = out_of_time(k)
-            break
-        if sol.status < 0 or not np.all(np.isfinite(sol.y)):
-            status, message = -1, f"integrator failed in period {k + 1}: {sol.message}"
-            break
-        seen_tau, seen_theta = sol.t[:-1], sol.y[:n, :-1]
-        z_new = sol.y[:, -1]
-        k += 1
-        size = max(float(np.max(np.abs(sol.y[:n]))), 1e-300)
-        d = max(
-            float(np.max(np.abs(z_new[:n] - z[:n]))),
-            float(np.max(np.abs(z_new[n:] - z[n:]))) / wref,
-        )
-        z = z_new
-        if d == 0.0:
-            bound = 0.0
-        elif rho < 1.0:
-            bound = d * rho / (1.0 - rho) / size
-        else:
-            bound = math.inf
-        history.append(bound)
-        if progress is not None:
-            progress(k, bound)
-        window.append((sol.t[:-1], sol.y[:n, :-1]))
-        del window[: -num.rms_periods]
-        if k >= min_periods and bound <= num.ss_tol:
-            converged, status, message = True, 0, f"steady after {k} periods"
-            # the periods just integrated serve as the RMS window when even their first sample
-            # is within ss_tol of the steady state:
-            # |Z_{k-p} - Z_inf| <= d (sum_{q<p} rho^-q + rho / (1 - rho))
-            p = num.rms_periods
-            if d == 0.0:  # an exact fixed point of the period map (also undamped: rho = 1)
-                reach = 0.0
-            elif rho > 0.0:  # bound <= ss_tol with d > 0 means rho < 1
-                reach = sum(rho**-q for q in range(p)) + rho / (1.0 - rho)
-            else:
-                reach = math.inf
-            reuse = k >= p and len(window) == p and d * reach / size <= num.ss_tol
-            break
-    else:
-        message = (
-            f"no steady state within {max_periods} periods (tau={k * P:.4g}); "
-            f"remaining transient bound {bound:.3g} > ss_tol {num.ss_tol:g}"
-            + ("; undamped model has no steady state" if model.eta == 0 else "")
-        )
-
-    taus, theta = seen_tau, seen_theta
-    if status == 0 and k == 1 and from_orbit and periodic.harmonic_tail <= num.tail_tol:
-        # the collocated orbit passed: report it (spectrally accurate, exact trigonometric
-        # samples) rather than the stepper's samples, whose error is the stepper's tolerance
-        taus = period_samples(dl, 0, num.rms_periods, m)
-        theta = np.tile(trig_interpolate(periodic.theta.T, m).T, (1, num.rms_periods))
-        message = (
-            f"collocation orbit (M={periodic.M}, harmonic tail {periodic.harmonic_tail:.2g}) "
-            f"verified by one period of time stepping (transient bound {bound:.2g})"
-        )
-    elif status == 0 and reuse:
-        taus = np.concatenate([w[0] for w in window])
-        theta = np.concatenate([w[1] for w in window], axis=1)
-        message += f" (RMS window: the last {num.rms_periods} of them)"
-    elif status == 0:
-        window = period_samples(dl, k, num.rms_periods, m)
-        sol = run(k * P, (k + num.rms_periods) * P, z, window)
-        if sol is None:
-            status, converged, message = 1, False, out_of_time(k) + " (in the RMS window)"
-        elif sol.status < 0 or sol.y.shape[1] != window.size or not np.all(np.isfinite(sol.y)):
-            status, converged = -1, False
-            message = f"integrator failed in the RMS window: {sol.message}"
-        else:
-            taus, theta = window, sol.y[:n]
-            k += num.rms_periods
-    y_m = model.grid.midspan(theta)
+    tol = tolerances(model, dl, num, z, response_scale, periodic)
+    stepper = PeriodStepper(model, dl, num, tol, deadline=t0 + num.max_seconds)
+    run = march(stepper, z, from_orbit, progress)
+    win = rms_window(stepper, run, periodic, from_orbit)
     return SteadyState(
-        tau=taus,
-        theta=theta,
-        y_m=np.atleast_1d(y_m),
-        converged=converged,
-        status=status,
-        message=message,
-        periods=k,
-        transient=bound,
-        nfev=nfev,
-        njev=njev,
+        tau=win.tau,
+        theta=win.theta,
+        y_m=np.atleast_1d(model.grid.midspan(win.theta)),
+        converged=win.status == 0,
+        status=win.status,
+        message=win.message,
+        periods=win.periods,
+        transient=run.bound,
+        nfev=stepper.nfev,
+        njev=stepper.njev,
         seconds=time.perf_counter() - t0,
-        history=history,
+        history=run.history,
         periodic=periodic,
     )

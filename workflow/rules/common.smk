@@ -57,7 +57,9 @@ CODE_FIGURES = [str(PKG / f) for f in ("report/figures.py", "report/style.py")]
 CODE_SOLVER = [
     str(PKG / f)
     for f in (
-        "bench/benchmark.py",
+        "bench/plan.py",
+        "bench/run.py",
+        "bench/report.py",
         "model/elastica.py",
         "solve/steady.py",
         "solve/periodic.py",

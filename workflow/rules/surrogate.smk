@@ -4,6 +4,7 @@ SURROGATE_CODE = [
     str(PKG / f)
     for f in (
         "model/surrogate.py",
+        "analysis/surrogate_study.py",
         "report/surrogate_figures.py",
         "model/modes.py",
         "model/elastica.py",

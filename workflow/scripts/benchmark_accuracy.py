@@ -4,7 +4,9 @@
 # (`snakemake` is injected by Snakemake)
 import sys
 
-from rotbeam.bench.benchmark import plan_from_dict, run_benchmark, write_outputs
+from rotbeam.bench.plan import plan_from_dict
+from rotbeam.bench.report import write_outputs
+from rotbeam.bench.run import run_benchmark
 
 with open(snakemake.log[0], "w") as log:
     plan = plan_from_dict(snakemake.params.plan)

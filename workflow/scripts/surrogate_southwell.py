@@ -6,10 +6,11 @@ from pathlib import Path
 
 import pandas as pd
 
+from rotbeam.analysis.surrogate_study import discretisation_floor, southwell_table
 from rotbeam.model.params import Beam
 from rotbeam.model.surrogate import southwell_coefficient
 from rotbeam.report.io import write_table
-from rotbeam.report.surrogate_figures import discretisation_floor, southwell_figure, southwell_table
+from rotbeam.report.surrogate_figures import southwell_figure
 
 p = snakemake.params
 peaks = {Path(f).stem: pd.read_csv(f) for f in snakemake.input.lines}

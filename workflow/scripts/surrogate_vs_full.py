@@ -7,16 +7,16 @@ from pathlib import Path
 
 import pandas as pd
 
-from rotbeam.model.params import Effects
-from rotbeam.report.io import write_csv, write_json, write_table
-from rotbeam.report.surrogate_figures import (
+from rotbeam.analysis.surrogate_study import (
     full_critical,
     surrogate_boundary,
     surrogate_curve,
     validity_statement,
-    vs_full_figure,
     vs_full_table,
 )
+from rotbeam.model.params import Effects
+from rotbeam.report.io import write_csv, write_json, write_table
+from rotbeam.report.surrogate_figures import vs_full_figure
 
 p = snakemake.params
 effects = Effects.from_list(p.effects)

@@ -1,0 +1,202 @@
+"""Work-precision benchmark: what each digit of accuracy costs, measured side by side in one run.
+
+For a fixed set of scenes on the reference beam, every *curve* (an integrator with a steady-state
+strategy, at N = 40) is run over a ladder of tolerances; each run records its wall time and the
+error of RMS(y_m) and of Delta RMS against references computed in the same run:
+
+* the **same-N reference** (N = 40, tight tolerance): the error of a run against it is what the
+  time integration and the steady-state strategy cost (the spatial error is common to all curves);
+* the **converged reference**: Richardson extrapolation (order 2, measured in tests/test_dynamics)
+  of tight solutions at N = 40 and 80; the error of the grid study (N = 10 ... 80) and of the
+  surrogate is against it.  The same extrapolation from N = 20 and 40 says how many digits the
+  reference has (`reference_digits`).
+
+Errors of RMS are relative.  Delta RMS is itself a relative number that is compared with a
+threshold (0.1 in the paper), so its error is |Delta - Delta_ref| / max(|Delta_ref|, 0.1).
+
+The baseline is the plain port of the paper: scipy Radau with its finite-difference Jacobian, from
+the straight beam at rest, integrated over the time in which every transient decays below the
+target error (`baseline_run`); its ladder varies rtol.  The
+speed-up of a curve on a scene is the ratio of the cheapest baseline run and the cheapest run of
+the curve whose RMS error is below `target` (0.1 %); both measured in the same process.
+
+This module makes the runs; what to run is `rotbeam.bench.plan`, the speed-ups, the chosen
+default, the Markdown summary and the figure are `rotbeam.bench.report`.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Callable
+from dataclasses import replace
+from typing import Any
+
+import numpy as np
+import pandas as pd
+from scipy.integrate import solve_ivp
+
+from ..model.criterion import delta_rms, rms
+from ..model.elastica import DiscreteElastica
+from ..model.params import Dimensionless, Drive, Effects
+from ..model.surrogate import steady_rms
+from ..simulate.scene import Scene, quasistatic_midspan, simulate
+from ..solve.numerics import Numerics
+from ..solve.steady import OutOfTime, first_order_rhs
+from .plan import CURVES, DELTA_SCALE, BenchPlan
+
+
+def _scene(plan: BenchPlan, omega0: float, f_d: float, numerics: Numerics) -> Scene:
+    return Scene(plan.beam, Drive(omega0, 1.0, f_d), Effects(), numerics)
+
+
+def _run(scene: Scene) -> dict[str, Any]:
+    t0 = time.perf_counter()
+    try:
+        res = simulate(scene)
+    except Exception as exc:  # a failing method is a result of the benchmark, not its end
+        return {"seconds": time.perf_counter() - t0, "rms": math.nan, "delta_rms": math.nan,
+                "converged": False, "status": -2, "periods": 0, "nfev": 0, "njev": 0, "M": 0,
+                "message": f"{type(exc).__name__}: {exc}"}  # fmt: skip
+    dyn = res.dynamic
+    return {
+        "seconds": time.perf_counter() - t0,
+        "rms": res.rms_dynamic,
+        "delta_rms": res.delta_rms,
+        "converged": bool(res.converged),
+        "status": dyn.status,
+        "periods": dyn.periods,
+        "nfev": dyn.nfev,
+        "njev": dyn.njev,
+        "M": dyn.periodic.M if dyn.periodic is not None else 0,
+        "message": dyn.message,
+    }
+
+
+def baseline_run(plan: BenchPlan, omega0: float, f_d: float, N: int, rtol: float) -> dict:
+    """The plain port of the paper: scipy Radau with its finite-difference Jacobian, from the
+    straight beam at rest, over the a-priori transient time tau_tr = 2 ln(1 / target) / eta
+    (every mode decays as exp(-eta tau / 2)), then two periods sampled for the RMS; absolute
+    tolerance scipy's default 1e-6, relative tolerance `rtol` (the ladder)."""
+    t0 = time.perf_counter()
+    dl = Dimensionless.from_physical(plan.beam, Drive(omega0, 1.0, f_d), Effects())
+    model = DiscreteElastica(N, dl.hub_ratio, dl.eta, dl.effects)
+    n, P, m, p = model.n, dl.period, 64, 2
+    K = math.ceil(2.0 * math.log(1.0 / plan.target) / dl.eta / P)
+    taus = (K + np.arange(p * m) / m) * P
+    _, y_qs = quasistatic_midspan(dl, N, taus[:m])
+    atol = 1e-6  # scipy's default, as MATLAB's ode23tb: the plain port keeps it
+    deadline = t0 + plan.max_seconds
+
+    rhs = first_order_rhs(model, dl, deadline)
+
+    row = {"rms": math.nan, "delta_rms": math.nan, "converged": False, "status": 1,
+           "periods": K + p, "nfev": 0, "njev": 0, "M": 0}  # fmt: skip
+    try:
+        sol = solve_ivp(rhs, (0.0, (K + p) * P), np.zeros(2 * n), method="Radau", rtol=rtol,
+                        atol=atol, t_eval=taus)  # fmt: skip
+    except OutOfTime:
+        row["message"] = f"out of time ({plan.max_seconds:g} s)"
+    else:
+        row.update(nfev=sol.nfev, njev=sol.njev, message=f"{K} + {p} periods: {sol.message}")
+        if sol.success and np.all(np.isfinite(sol.y)):
+            r = rms(np.atleast_1d(model.grid.midspan(sol.y[:n])))
+            r_qs = rms(np.tile(y_qs, p))
+            row.update(rms=r, delta_rms=delta_rms(r, r_qs), converged=True, status=0)
+    row["seconds"] = time.perf_counter() - t0
+    return row
+
+
+def reference(plan: BenchPlan, omega0: float, f_d: float) -> dict[str, Any]:
+    """Tight solutions at the three reference grids and their Richardson limits."""
+    tight = dict(rtol=plan.ref_tol, ss_tol=10 * plan.ref_tol, tail_tol=plan.ref_tol)
+    out: dict[str, Any] = {"seconds": 0.0}
+    for N in plan.ref_N:
+        r = _run(_scene(plan, omega0, f_d, Numerics(N=N, max_seconds=1800.0, **tight)))
+        if not (r["converged"] and math.isfinite(r["rms"])):
+            raise RuntimeError(f"reference at N={N} failed: {r['message']}")
+        out[f"rms_N{N}"], out[f"delta_N{N}"] = r["rms"], r["delta_rms"]
+        out["seconds"] += r["seconds"]
+    a, b, c = plan.ref_N
+
+    def rich(key: str, n1: int, n2: int) -> float:  # order 2 in 1/N
+        f1, f2 = out[f"{key}_N{n1}"], out[f"{key}_N{n2}"]
+        q = (n2 / n1) ** 2
+        return (q * f2 - f1) / (q - 1.0)
+
+    out["rms"], out["delta_rms"] = rich("rms", b, c), rich("delta", b, c)
+    coarse = rich("rms", a, b)
+    out["reference_rel_change"] = abs(coarse - out["rms"]) / abs(out["rms"])
+    out["reference_digits"] = -math.log10(max(out["reference_rel_change"], 1e-16))
+    return out
+
+
+def _errors(row: dict[str, Any], rms_ref: float, delta_ref: float) -> tuple[float, float]:
+    if not (row["converged"] and math.isfinite(row["rms"])):
+        return math.nan, math.nan
+    e_rms = abs(row["rms"] - rms_ref) / abs(rms_ref)
+    e_delta = abs(row["delta_rms"] - delta_ref) / max(abs(delta_ref), DELTA_SCALE)
+    return e_rms, e_delta
+
+
+def run_benchmark(
+    plan: BenchPlan, progress: Callable[[str], None] | None = None
+) -> tuple[pd.DataFrame, pd.DataFrame]:
+    """All runs of the plan; returns (runs, references), one row per run / per scene."""
+    say = progress or (lambda _msg: None)
+    # warm-up: imports, caches and first-call costs stay out of the first timed run
+    _run(_scene(plan, 5.0, 2.0, Numerics(N=10)))
+    baseline_run(plan, 5.0, 2.0, 10, 1e-2)
+    rows: list[dict[str, Any]] = []
+    refs: list[dict[str, Any]] = []
+    for label, omega0, f_d in plan.scenes:
+        say(f"{label}: reference (N = {plan.ref_N}, tol {plan.ref_tol:g})")
+        ref = reference(plan, omega0, f_d)
+        refs.append({"scene": label, "omega0": omega0, "f_d": f_d, **ref})
+        same = (ref[f"rms_N{plan.N}"], ref[f"delta_N{plan.N}"])
+        base = {"scene": label, "omega0": omega0, "f_d": f_d}
+        for name in plan.curves:
+            curve = CURVES[name]
+            for tol in plan.tolerances:
+                if name == "baseline":
+                    r = baseline_run(plan, omega0, f_d, plan.N, tol)
+                else:
+                    num = replace(curve.numerics_at(plan.N, tol), max_seconds=plan.max_seconds)
+                    r = _run(_scene(plan, omega0, f_d, num))
+                e, ed = _errors(r, *same)
+                et, edt = _errors(r, ref["rms"], ref["delta_rms"])
+                rows.append({**base, "study": "method", "curve": name, "N": plan.N, "tol": tol,
+                             **r, "err_rms": e, "err_delta": ed,
+                             "err_rms_converged": et, "err_delta_converged": edt})  # fmt: skip
+                say(f"{label}: {name} tol {tol:g}: {r['seconds']:.3g} s, error {e:.2g}")
+                if not r["converged"]:
+                    break  # tighter tolerances only cost more
+        grid = [(N, False) for N in plan.grid] + [(N, True) for N in plan.grid if 10 <= N <= plan.N]
+        for N, extrapolate in grid:
+            num = CURVES["default"].numerics_at(N, plan.grid_tol)
+            num = replace(num, max_seconds=plan.max_seconds, extrapolate=extrapolate)
+            r = _run(_scene(plan, omega0, f_d, num))
+            et, edt = _errors(r, ref["rms"], ref["delta_rms"])
+            name = "default_richardson" if extrapolate else "default"
+            rows.append({**base, "study": "grid", "curve": name, "N": N,
+                         "tol": plan.grid_tol, **r, "err_rms": et, "err_delta": edt,
+                         "err_rms_converged": et, "err_delta_converged": edt})  # fmt: skip
+            say(f"{label}: grid {name} N = {N}: {r['seconds']:.3g} s, error {et:.2g}")
+        if plan.surrogate:
+            rows.append({**base, **surrogate_row(plan, omega0, f_d, ref)})
+    return pd.DataFrame(rows), pd.DataFrame(refs)
+
+
+def surrogate_row(plan: BenchPlan, omega0: float, f_d: float, ref: dict) -> dict[str, Any]:
+    """The one-mode surrogate: time and error against the converged reference."""
+    t0 = time.perf_counter()
+    dl = Dimensionless.from_physical(plan.beam, Drive(omega0, 1.0, f_d), Effects())
+    s = steady_rms(dl)
+    r = {"seconds": time.perf_counter() - t0, "rms": s["rms_dynamic"],
+         "delta_rms": s["delta_rms"], "converged": True, "status": 0, "periods": 0,
+         "nfev": 0, "njev": 0, "M": 0,
+         "message": "one-mode Galerkin, harmonic balance"}  # fmt: skip
+    et, edt = _errors(r, ref["rms"], ref["delta_rms"])
+    return {"study": "surrogate", "curve": "surrogate", "N": 0, "tol": math.nan, **r,
+            "err_rms": et, "err_delta": edt, "err_rms_converged": et,
+            "err_delta_converged": edt}  # fmt: skip
