@@ -17,7 +17,9 @@ runs at the tolerance the bound needs (ss_tol (1 - rho) / (3 rho), not `rtol`) a
 orbit passes, its own samples are reported (spectrally accurate; the stepper's would carry the
 stepper's error).  An orbit that fails is left behind: the transient is followed at `rtol`.
 A single period cannot expose a slowly growing instability (its multiplier would have to exceed
-1 / rho to show); that needs a Floquet analysis, which this check is not.
+1 / rho to show), so the orbit's Floquet multipliers are computed first (`rotbeam.solve.stability`):
+an unstable orbit is left along its unstable direction and time stepping decides; the reported
+steady state carries the multipliers of the orbit it is (docs/stability.md).
 Without damping no steady state is reached: we say so and return the last periods seen.
 """
 
@@ -35,9 +37,17 @@ from ..model.elastica import DiscreteElastica
 from ..model.modes import dimensionless_frequencies, linear_forced_response
 from ..model.params import Dimensionless
 from ..model.quasistatic import quasistatic_series
+from .floquet import FloquetResult
 from .numerics import Numerics
 from .periodic import PeriodicResult, solve_periodic_adaptive
 from .spectral import trig_interpolate
+from .stability import (
+    STATUS_UNSTABLE,
+    leave_orbit,
+    orbit_stability,
+    stability_note,
+    window_stability,
+)
 
 
 class OutOfTime(Exception):
@@ -52,7 +62,7 @@ class SteadyState:
     theta: np.ndarray  #: (N-1, m) angles at the samples
     y_m: np.ndarray  #: midspan deflection at the samples
     converged: bool
-    status: int  #: 0 steady, 1 no steady state within budget, -1 integrator failure
+    status: int  #: 0 steady, 1 no steady state within budget, 2 only an unstable orbit, -1 failure
     message: str
     periods: int  #: drive periods integrated in all
     transient: float  #: last bound on the remaining relative transient
@@ -61,6 +71,7 @@ class SteadyState:
     seconds: float = 0.0
     history: list[float] = field(default_factory=list)  #: transient bound per period
     periodic: PeriodicResult | None = None  #: the collocation result, if one was made
+    floquet: FloquetResult | None = None  #: multipliers of the reported orbit (else: collocated)
 
 
 def period_samples(dl: Dimensionless, k0: int, periods: int, m: int) -> np.ndarray:
@@ -134,9 +145,15 @@ def _from_collocation(
     one = trig_interpolate(res.theta.T, m).T  # (n, m) over one period
     theta = np.tile(one, (1, num.rms_periods))
     taus = period_samples(dl, 0, num.rms_periods, m)
+    fl = orbit_stability(model, dl, res)
     ok = res.converged and res.harmonic_tail <= num.tail_tol and model.eta > 0.0
     msg = f"collocation M={res.M}: {res.message}, harmonic tail {res.harmonic_tail:.2g}"
-    if model.eta == 0.0:
+    msg += stability_note(fl)
+    unstable = ok and fl is not None and not fl.stable
+    if unstable:
+        ok = False
+        msg += " (not a steady state: the orbit is unstable)"
+    elif model.eta == 0.0:
         msg += "; undamped model has no steady state (a periodic orbit, not an attractor)"
     elif not ok:
         msg += " (not verified: collocation did not meet its tolerance)"
@@ -145,12 +162,13 @@ def _from_collocation(
         theta=theta,
         y_m=np.atleast_1d(model.grid.midspan(theta)),
         converged=ok,
-        status=0 if ok else 1,
+        status=0 if ok else (STATUS_UNSTABLE if unstable else 1),
         message=msg,
         periods=0,
         transient=res.harmonic_tail,
         seconds=time.perf_counter() - t0,
         periodic=res,
+        floquet=fl,
     )
 
 
@@ -189,6 +207,10 @@ def steady_state(
     if not scale or not math.isfinite(scale):
         scale = abs(dl.alpha * dl.omega) * (dl.hub_ratio + 1.0) / 8.0 or 1.0
     wref = max(dl.omega, 1.0)
+    orbit_fl = orbit_stability(model, dl, periodic)  # an unstable orbit is left, not verified
+    unstable_orbit = orbit_fl is not None and not orbit_fl.stable
+    if unstable_orbit:
+        z = leave_orbit(z, orbit_fl, scale)
     rho = math.exp(-slowest_decay_rate(model, dl) * P)
     # the per-period integration error must stay below what the transient bound can tell apart
     rtol = min(num.rtol, 0.1 * num.ss_tol * (1.0 - rho)) if rho < 1.0 else num.rtol
@@ -198,7 +220,7 @@ def steady_state(
     # threshold suffices, whatever `rtol` asks of a transient (the reported samples are then the
     # collocation's, accurate to its harmonic tail).  Should the check fail, the following
     # periods follow the transient at the tight `rtol` and their samples are reported.
-    from_orbit = periodic is not None and periodic.converged
+    from_orbit = periodic is not None and periodic.converged and not unstable_orbit
     check = min(1e-2, num.ss_tol * (1.0 - rho) / (3.0 * rho)) if from_orbit and 0 < rho < 1 else 0.0
     rtol_first = max(rtol, check)
 
@@ -329,6 +351,15 @@ def steady_state(
         else:
             taus, theta = window, sol.y[:n]
             k += num.rms_periods
+    fl = orbit_fl if status == 0 and k == 1 and from_orbit else None
+    if status == 0 and fl is None:  # the orbit time stepping settled on: its own multipliers
+        fl = window_stability(model, dl, theta[:, -m:])
+        if fl is not None and not fl.stable:
+            status, converged = STATUS_UNSTABLE, False
+            message += "; but the orbit reached is unstable (a slow transient, not a steady state)"
+    if unstable_orbit:
+        message = f"collocated orbit unstable ({orbit_fl.crossing()}); {message}"
+    message += stability_note(fl if fl is not None else orbit_fl)
     y_m = model.grid.midspan(theta)
     return SteadyState(
         tau=taus,
@@ -344,4 +375,5 @@ def steady_state(
         seconds=time.perf_counter() - t0,
         history=history,
         periodic=periodic,
+        floquet=fl if fl is not None else orbit_fl,
     )
