@@ -66,7 +66,11 @@ def build_parser() -> argparse.ArgumentParser:
                    help="Delta RMS below which quasi-static is good enough, in (0, 1) "
                         "(default 0.10, the paper's)")  # fmt: skip
     s.add_argument("--plot", help="draw y_m, dynamic against quasi-static, with the verdict and "
-                   "the cost, to this .png, .pdf or .svg file")  # fmt: skip
+                   "the cost, to this .png, .pdf or .svg file (without a stable periodic state: "
+                   "the Poincare section and the spectrum)")  # fmt: skip
+    s.add_argument("--response-periods", type=_int, default=100,
+                   help="without a stable periodic state: periods of transient, then as many "
+                   "classified (Poincare section, Lyapunov exponent); default 100")  # fmt: skip
 
     c = sub.add_parser("critical", help="f_d*: the drive frequency where Delta RMS reaches the "
                        "threshold at one speed (root finding on the full model)")  # fmt: skip
@@ -196,6 +200,10 @@ def cmd_simulate(args: argparse.Namespace) -> int:
     if args.plot:
         check_plot_path(args.plot)
     _check_threshold_flag(args.threshold)
+    if args.response_periods < 1:
+        raise RotbeamInputError(
+            f"argument --response-periods: must be >= 1, got {args.response_periods}"
+        )
 
     def progress(k: int, bound: float) -> None:
         print(f"\rperiod {k}: transient bound {bound:.2e}", end="", file=sys.stderr, flush=True)
@@ -204,11 +212,16 @@ def cmd_simulate(args: argparse.Namespace) -> int:
     if args.progress:
         print(file=sys.stderr)
     verdict = judge(res, args.threshold)
-    summary = res.summary() | verdict.as_dict()
+    summary = res.summary() | verdict.as_dict() | _response(res, args)
     if args.out:
         _write_series(args.out, res.time_series())
-    if args.plot:
+    if args.plot and summary.get("_response") is not None:
+        from .report.response_figures import plot_response
+
+        plot_response(summary["_response"], scene, args.plot)
+    elif args.plot:
         plot_verdict(res, verdict, args.plot)
+    summary.pop("_response", None)
     if args.json:
         print(json.dumps(summary, default=float))
     else:
@@ -219,6 +232,20 @@ def cmd_simulate(args: argparse.Namespace) -> int:
         print(f"{'verdict':16s} {verdict.text}")
         print(f"{'seconds':16s} {summary['seconds']:.3g}")
     return 0 if res.converged else 1
+
+
+def _response(res, args: argparse.Namespace) -> dict[str, Any]:
+    """`response` and `lyapunov_max`: from the multipliers for a stable periodic state
+    (ln |mu|max / (P T)), else from classifying the time-stepped response."""
+    fl = res.dynamic.floquet
+    if res.converged and fl is not None:
+        P = 1.0 / res.scene.drive.f_d
+        lyap = math.log(fl.max_abs) / P if fl.max_abs > 0 else -math.inf
+        return {"response": "periodic", "lyapunov_max": lyap}
+    from .simulate.response import response_of
+
+    r = response_of(res.scene, args.response_periods, args.response_periods)
+    return r.as_dict() | {"_response": r}
 
 
 def cmd_critical(args: argparse.Namespace) -> int:

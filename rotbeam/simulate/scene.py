@@ -88,6 +88,7 @@ class SceneResult:
             "effects": ",".join(self.scene.effects.active()),
             "seconds": self.seconds,
         }
+        out.update(stability_columns(self.dynamic))
         out.update(drive_groups(beam, drive))
         out.update({k: v for k, v in beam.derived().items() if k in ("G", "delta", "eta", "zeta")})
         if self.extrapolation is not None:
@@ -102,6 +103,14 @@ class SceneResult:
             "y_m_dynamic": self.y_dynamic,
             "y_m_quasistatic": self.y_quasistatic,
         }
+
+
+def stability_columns(dyn: SteadyState) -> dict[str, Any]:
+    """floquet_max (largest |mu| of the reported orbit, or of the collocated one when no steady
+    state was reached) and stable (None without multipliers)."""
+    fl = dyn.floquet
+    return {"floquet_max": fl.max_abs if fl is not None else math.nan,
+            "stable": bool(fl.stable) if fl is not None else None}  # fmt: skip
 
 
 def quasistatic_midspan(

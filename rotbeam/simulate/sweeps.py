@@ -20,7 +20,7 @@ from .scene import Scene, simulate
 COLUMNS = [
     "omega0", "f_d", "amplitude", "fd_over_fn", "C_max", "E_max", "E_n", "f_n_hz", "f0_hz",
     "rms_dynamic", "rms_quasistatic", "delta_rms", "converged", "status", "message",
-    "periods", "N", "extrapolated", "seconds",
+    "periods", "N", "extrapolated", "seconds", "floquet_max", "stable", "response",
 ]  # fmt: skip
 
 
@@ -70,6 +70,8 @@ def scan_line(
                     "message", "periods")  # fmt: skip
             row.update({key: s[key] for key in keys})
             row["extrapolated"] = bool(s.get("extrapolated", False))
+            row.update({key: s[key] for key in ("floquet_max", "stable")})
+            row["response"] = "periodic" if res.converged else "unclassified"
             if res.dynamic.periodic is not None and res.dynamic.periodic.converged:
                 guess = res.dynamic.periodic.theta.T
         except RotbeamInputError:
@@ -78,7 +80,8 @@ def scan_line(
             row.update({"rms_dynamic": math.nan, "rms_quasistatic": math.nan,
                         "delta_rms": math.nan, "converged": False, "status": -2,
                         "message": f"{type(exc).__name__}: {exc}", "periods": 0,
-                        "extrapolated": False})  # fmt: skip
+                        "extrapolated": False, "floquet_max": math.nan, "stable": None,
+                        "response": "unclassified"})  # fmt: skip
             guess = None
         row["seconds"] = time.perf_counter() - t0
         rows.append(row)

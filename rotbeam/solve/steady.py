@@ -17,7 +17,9 @@ runs at the tolerance the bound needs (ss_tol (1 - rho) / (3 rho), not `rtol`) a
 orbit passes, its own samples are reported (spectrally accurate; the stepper's would carry the
 stepper's error).  An orbit that fails is left behind: the transient is followed at `rtol`.
 A single period cannot expose a slowly growing instability (its multiplier would have to exceed
-1 / rho to show); that needs a Floquet analysis, which this check is not.
+1 / rho to show), so the orbit's Floquet multipliers are computed first (`rotbeam.solve.stability`):
+an unstable orbit is left along its unstable direction and time stepping decides; the reported
+steady state carries the multipliers of the orbit it is (docs/stability.md).
 Without damping no steady state is reached: we say so and return the last periods seen.
 
 `steady_state` runs these as named steps: `initial_state`, `tolerances` (rtol, the first-period
@@ -39,9 +41,17 @@ from ..model.elastica import DiscreteElastica
 from ..model.modes import dimensionless_frequencies, linear_forced_response
 from ..model.params import Dimensionless
 from ..model.quasistatic import quasistatic_series
+from .floquet import FloquetResult
 from .numerics import Numerics
 from .periodic import PeriodicResult, solve_periodic_adaptive
 from .spectral import trig_interpolate
+from .stability import (
+    STATUS_UNSTABLE,
+    leave_orbit,
+    orbit_stability,
+    stability_note,
+    window_stability,
+)
 
 
 class OutOfTime(Exception):
@@ -56,7 +66,7 @@ class SteadyState:
     theta: np.ndarray  #: (N-1, m) angles at the samples
     y_m: np.ndarray  #: midspan deflection at the samples
     converged: bool
-    status: int  #: 0 steady, 1 no steady state within budget, -1 integrator failure
+    status: int  #: 0 steady, 1 no steady state within budget, 2 only an unstable orbit, -1 failure
     message: str
     periods: int  #: drive periods integrated in all
     transient: float  #: last bound on the remaining relative transient
@@ -65,6 +75,7 @@ class SteadyState:
     seconds: float = 0.0
     history: list[float] = field(default_factory=list)  #: transient bound per period
     periodic: PeriodicResult | None = None  #: the collocation result, if one was made
+    floquet: FloquetResult | None = None  #: multipliers of the reported orbit (else: collocated)
 
 
 def period_samples(dl: Dimensionless, k0: int, periods: int, m: int) -> np.ndarray:
@@ -138,9 +149,15 @@ def _from_collocation(
     one = trig_interpolate(res.theta.T, m).T  # (n, m) over one period
     theta = np.tile(one, (1, num.rms_periods))
     taus = period_samples(dl, 0, num.rms_periods, m)
+    fl = orbit_stability(model, dl, res)
     ok = res.converged and res.harmonic_tail <= num.tail_tol and model.eta > 0.0
     msg = f"collocation M={res.M}: {res.message}, harmonic tail {res.harmonic_tail:.2g}"
-    if model.eta == 0.0:
+    msg += stability_note(fl)
+    unstable = ok and fl is not None and not fl.stable
+    if unstable:
+        ok = False
+        msg += " (not a steady state: the orbit is unstable)"
+    elif model.eta == 0.0:
         msg += "; undamped model has no steady state (a periodic orbit, not an attractor)"
     elif not ok:
         msg += " (not verified: collocation did not meet its tolerance)"
@@ -149,12 +166,13 @@ def _from_collocation(
         theta=theta,
         y_m=np.atleast_1d(model.grid.midspan(theta)),
         converged=ok,
-        status=0 if ok else 1,
+        status=0 if ok else (STATUS_UNSTABLE if unstable else 1),
         message=msg,
         periods=0,
         transient=res.harmonic_tail,
         seconds=time.perf_counter() - t0,
         periodic=res,
+        floquet=fl,
     )
 
 
@@ -180,6 +198,7 @@ def tolerances(
     z: np.ndarray,
     response_scale: float | None,
     periodic: PeriodicResult | None,
+    from_orbit: bool,
 ) -> Tolerances:
     """The stepper's tolerances for a march from the state z.
 
@@ -197,9 +216,8 @@ def tolerances(
     stalls above ss_tol until max_tau.
     """
     n = model.n
-    from_orbit = periodic is not None and periodic.converged
     scale = response_scale if response_scale else float(np.max(np.abs(z[:n])))
-    if from_orbit:
+    if periodic is not None and periodic.converged:
         orbit = float(np.max(np.abs(periodic.theta)))
         scale = min(scale, orbit) if orbit > 0.0 and math.isfinite(orbit) else scale
     if not scale or not math.isfinite(scale):
@@ -426,18 +444,23 @@ def steady_state(
     z, periodic = initial_state(model, dl, num.start, num.tail_tol, guess)
     if not num.integrate and periodic is not None:
         return _from_collocation(model, dl, num, periodic, t0)
-    from_orbit = periodic is not None and periodic.converged
-    tol = tolerances(model, dl, num, z, response_scale, periodic)
+    orbit_fl = orbit_stability(model, dl, periodic)  # an unstable orbit is left, not verified
+    unstable_orbit = orbit_fl is not None and not orbit_fl.stable
+    from_orbit = periodic is not None and periodic.converged and not unstable_orbit
+    tol = tolerances(model, dl, num, z, response_scale, periodic, from_orbit)
+    if unstable_orbit:
+        z = leave_orbit(z, orbit_fl, tol.scale)
     stepper = PeriodStepper(model, dl, num, tol, deadline=t0 + num.max_seconds)
     run = march(stepper, z, from_orbit, progress)
     win = rms_window(stepper, run, periodic, from_orbit)
+    status, message, fl = reported_stability(model, dl, num, win, orbit_fl, from_orbit)
     return SteadyState(
         tau=win.tau,
         theta=win.theta,
         y_m=np.atleast_1d(model.grid.midspan(win.theta)),
-        converged=win.status == 0,
-        status=win.status,
-        message=win.message,
+        converged=status == 0,
+        status=status,
+        message=message,
         periods=win.periods,
         transient=run.bound,
         nfev=stepper.nfev,
@@ -445,4 +468,29 @@ def steady_state(
         seconds=time.perf_counter() - t0,
         history=run.history,
         periodic=periodic,
+        floquet=fl,
     )
+
+
+def reported_stability(
+    model: DiscreteElastica,
+    dl: Dimensionless,
+    num: Numerics,
+    win: Window,
+    orbit_fl: FloquetResult | None,
+    from_orbit: bool,
+) -> tuple[int, str, FloquetResult | None]:
+    """Status, message and multipliers of the reported state: the collocated orbit's when it was
+    verified in one period, else those of the orbit time stepping settled on (an unstable one is
+    a slow transient, not a steady state)."""
+    status, message = win.status, win.message
+    fl = orbit_fl if status == 0 and win.periods == 1 and from_orbit else None
+    if status == 0 and fl is None:
+        fl = window_stability(model, dl, win.theta[:, -num.samples_per_period :])
+        if fl is not None and not fl.stable:
+            status = STATUS_UNSTABLE
+            message += "; but the orbit reached is unstable (a slow transient, not a steady state)"
+    if orbit_fl is not None and not orbit_fl.stable:
+        message = f"collocated orbit unstable ({orbit_fl.crossing()}); {message}"
+    message += stability_note(fl if fl is not None else orbit_fl)
+    return status, message, fl if fl is not None else orbit_fl

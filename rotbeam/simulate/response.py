@@ -1,0 +1,174 @@
+r"""What the beam does when there is no stable periodic steady state: classification of the
+time-stepped response.
+
+After `transient_periods` drive periods from the quasi-static start, `section_periods` more are
+integrated with one tangent vector (`rotbeam.solve.lyapunov`): the states at tau = k P are the
+stroboscopic Poincare section, the tangent gives the largest Lyapunov exponent, and 16 samples a
+period of y_m give the spectrum.  With size the largest |z| on the section and d(q) the largest
+|z_{j+q} - z_j| / size over the last half of the section (q = 1 .. MAX_SUBHARMONIC):
+
+* ``periodic`` (period P) when d(1) <= tol, ``subharmonic`` (period q P) when the smallest q
+  with d(q) <= tol is > 1, or when the exponent is clearly negative (lambda + spread < 0: a
+  periodic attractor still converging; then q minimises d);
+* otherwise ``chaotic`` when the exponent is clearly positive (lambda - spread > 0 and
+  lambda P > CHAOS_MIN, a growth of more than 1 % a period), else ``quasiperiodic``
+  (lambda ~ 0: the section fills a closed curve, the spectrum has incommensurate lines).
+
+lyapunov_max is reported per second (lambda / T).  The classification is as good as the run is
+long: the message gives the periods, the exponent's spread and the grid.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy.integrate import solve_ivp
+
+from ..model.elastica import DiscreteElastica
+from ..solve.lyapunov import largest_lyapunov
+from ..solve.steady import first_order_rhs, initial_state
+from .scene import Scene
+
+RESPONSES = ("periodic", "subharmonic", "quasiperiodic", "chaotic")
+MAX_SUBHARMONIC = 8
+CHAOS_MIN = 0.01  #: lambda P above which a clearly positive exponent counts as chaos
+SAMPLES = 16  #: samples per period for the spectrum
+
+
+@dataclass
+class ResponseResult:
+    response: str  #: one of RESPONSES
+    period_multiple: int  #: q for periodic (1) and subharmonic; 0 otherwise
+    lyapunov_max: float  #: largest Lyapunov exponent [1/s]
+    lyapunov_spread: float  #: its spread over the last half of the run [1/s]
+    section: np.ndarray  #: (K, 2) y_m / L and its rate [1/s] at t = k / f_d
+    spectrum_hz: np.ndarray
+    spectrum: np.ndarray  #: |FFT| of y_m (Hann window)
+    peaks_hz: list[float]
+    periods: int  #: transient + section periods integrated
+    N: int
+    seconds: float
+    message: str
+    distances: list[float] = field(default_factory=list)  #: d(q), q = 1..MAX_SUBHARMONIC
+
+    def as_dict(self) -> dict:
+        return {"response": self.response, "lyapunov_max": self.lyapunov_max,
+                "lyapunov_spread": self.lyapunov_spread, "period_multiple": self.period_multiple,
+                "response_periods": self.periods, "response_N": self.N,
+                "response_peaks_hz": self.peaks_hz[:5],
+                "response_message": self.message}  # fmt: skip
+
+
+def classify(distances: list[float], lam_P: float, spread_P: float, tol: float) -> tuple[str, int]:
+    """(response, q) from the section distances d(q) and the exponent per period."""
+    for q, d in enumerate(distances, start=1):
+        if d <= tol:
+            return ("periodic" if q == 1 else "subharmonic"), q
+    if lam_P + spread_P < 0.0:
+        q = int(np.argmin(distances)) + 1
+        return ("periodic" if q == 1 else "subharmonic"), q
+    if lam_P - spread_P > 0.0 and lam_P > CHAOS_MIN:
+        return "chaotic", 0
+    return "quasiperiodic", 0
+
+
+def section_distances(section: np.ndarray, max_q: int = MAX_SUBHARMONIC) -> list[float]:
+    """d(q) over the last half of the section, relative to its largest |z|."""
+    K = section.shape[0]
+    size = max(float(np.max(np.abs(section))), 1e-300)
+    tail = section[K // 2 :]
+    out = []
+    for q in range(1, max_q + 1):
+        if tail.shape[0] <= q:
+            out.append(math.inf)
+            continue
+        out.append(float(np.max(np.abs(tail[q:] - tail[:-q]))) / size)
+    return out
+
+
+def _midspan_rate(model: DiscreteElastica, theta: np.ndarray, theta_t: np.ndarray) -> np.ndarray:
+    """dy_m/dtau from Theta, Theta_t (n, K), as `Grid.midspan` interpolates y."""
+    g = model.grid
+    yt = g.P @ (np.cos(theta) * theta_t)
+    if g.mid >= 0:
+        return yt[g.mid]
+    i = g.N // 2
+    w = 0.5 * g.N - i
+    return (1 - w) * yt[i - 1] + w * yt[i]
+
+
+def _spectrum(y: np.ndarray, dt: float) -> tuple[np.ndarray, np.ndarray, list]:
+    """Hann-windowed amplitude spectrum of y and its five largest peaks [Hz]."""
+    yw = (y - y.mean()) * np.hanning(y.size)
+    amp = np.abs(np.fft.rfft(yw))
+    f = np.fft.rfftfreq(y.size, dt)
+    inner = np.where((amp[1:-1] > amp[:-2]) & (amp[1:-1] >= amp[2:]))[0] + 1
+    top = inner[np.argsort(-amp[inner])][:5]
+    return f, amp, [float(f[i]) for i in top]
+
+
+def response_of(
+    scene: Scene,
+    transient_periods: int = 100,
+    section_periods: int = 100,
+    N: int | None = None,
+    max_seconds: float = 1800.0,
+    rtol: float = 1e-7,
+    tol: float = 1e-3,
+) -> ResponseResult:
+    """Time-step the scene past its transient and classify what it settles into."""
+    t0 = time.perf_counter()
+    N = N or scene.numerics.N
+    dl = scene.dimensionless
+    model = DiscreteElastica(N, dl.hub_ratio, dl.eta, dl.effects)
+    n, P, T = model.n, dl.period, scene.beam.T
+    deadline = t0 + max_seconds
+    rhs = first_order_rhs(model, dl, math.inf)  # the budget is checked between periods
+
+    def jac(t, z):
+        return model.first_order_jacobian(z[:n], z[n:], dl.lam(t), dl.lam_dot(t))
+
+    z, _ = initial_state(model, dl, "quasistatic")
+    scale = max(float(np.max(np.abs(z[:n]))), 1e-6)
+    atol = np.concatenate(
+        [np.full(n, 1e-3 * rtol * scale), np.full(n, 1e-3 * rtol * scale * dl.omega)]
+    )
+    sol = solve_ivp(
+        rhs, (0.0, transient_periods * P), z, method="Radau", rtol=rtol, atol=atol, jac=jac
+    )
+    z = sol.y[:, -1]
+    ly = largest_lyapunov(rhs, jac, z, P, section_periods, t0=transient_periods * P, rtol=rtol,
+                          atol=atol, samples_per_interval=SAMPLES, deadline=deadline)  # fmt: skip
+    sec = ly.section
+    dist = section_distances(sec)
+    response, q = classify(dist, ly.exponent * P, ly.spread * P, tol)
+    theta_s = sec[:, :n].T
+    y_sec = np.atleast_1d(model.grid.midspan(theta_s))
+    yt_sec = _midspan_rate(model, theta_s, sec[:, n:].T) / T
+    theta_all = np.concatenate(ly.samples, axis=1) if ly.samples else theta_s
+    y_all = np.atleast_1d(model.grid.midspan(theta_all[:n]))
+    f, amp, peaks = _spectrum(y_all, P * T / SAMPLES)
+    periods = transient_periods + ly.intervals
+    msg = (f"{response}{f' (period {q} P)' if q > 1 else ''}: {periods} periods at N={N} "
+           f"({transient_periods} transient), largest Lyapunov exponent "
+           f"{ly.exponent / T:.3g} +- {ly.spread / T:.2g} 1/s, section distance d(1)={dist[0]:.2g}"
+           + (f"; {ly.message}" if "stopped" in ly.message or "failed" in ly.message
+              else ""))  # fmt: skip
+    return ResponseResult(
+        response=response,
+        period_multiple=q,
+        lyapunov_max=ly.exponent / T,
+        lyapunov_spread=ly.spread / T,
+        section=np.column_stack([y_sec, yt_sec]),
+        spectrum_hz=f,
+        spectrum=amp,
+        peaks_hz=peaks,
+        periods=periods,
+        N=N,
+        seconds=time.perf_counter() - t0,
+        message=msg,
+        distances=dist,
+    )

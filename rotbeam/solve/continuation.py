@@ -1,0 +1,264 @@
+r"""Branches of periodic orbits through folds: pseudo-arclength continuation in a parameter p.
+
+Generic over a `BranchProblem`: a residual R(x, p) of collocated periodic orbits (x the
+collocation unknowns, flattened), its Jacobian dR/dx (dense) and the Floquet multipliers of the
+orbit x.  `FirstOrderProblem` is one for any first-order ODE z' = f(t, z; p) with Jacobian,
+period P(p) (the Duffing oscillator in the tests); `rotbeam.solve.beam_branch` is the beam's.
+
+Keller's method.  With y = (x, p) and the unit tangent t (R_x t_x + R_p t_p = 0), a step of
+arclength ds predicts y + ds t and corrects by Newton on [R(y); t . W (y - y_pred)] = 0, W the
+weights (x by 1 / sqrt(dim x) times `x_scale`, p by 1 / p_scale).  The step grows by 1.3 after a
+corrector that converged in <= 4 iterations and halves after a failure.  Along the branch:
+a fold is where t_p changes sign (a real multiplier passes +1), its p the vertex of the parabola
+through the three points around it; a period doubling is where the count of real multipliers
+below -1 changes; a torus where the count of complex multipliers outside the circle does.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass, field
+
+import numpy as np
+import scipy.linalg as sla
+
+from .floquet import FloquetResult, orbit_floquet
+from .spectral import fourier_diff_matrix
+
+
+class BranchProblem:
+    """What continuation needs; subclasses implement residual, jacobian and floquet."""
+
+    def residual(self, x: np.ndarray, p: float) -> np.ndarray:
+        raise NotImplementedError
+
+    def jacobian(self, x: np.ndarray, p: float) -> np.ndarray:
+        raise NotImplementedError
+
+    def floquet(self, x: np.ndarray, p: float) -> FloquetResult:
+        raise NotImplementedError
+
+    def dR_dp(self, x: np.ndarray, p: float) -> np.ndarray:
+        """Central difference in p (the residual is smooth in p)."""
+        h = 1e-6 * max(abs(p), 1.0)
+        return (self.residual(x, p + h) - self.residual(x, p - h)) / (2.0 * h)
+
+
+class FirstOrderProblem(BranchProblem):
+    """Trigonometric collocation of z' = f(t, z; p) on M instants of the period P(p):
+    R = D Z - f(t_j, Z_j; p), with dR/dZ = D (x) I - blockdiag(J_j)."""
+
+    def __init__(
+        self,
+        rhs: Callable[[float, np.ndarray, float], np.ndarray],
+        jac: Callable[[float, np.ndarray, float], np.ndarray],
+        period: Callable[[float], float],
+        dim: int,
+        M: int = 33,
+    ):
+        self.rhs, self.jac, self.period, self.dim, self.M = rhs, jac, period, dim, M
+        self.D1 = fourier_diff_matrix(M, 1.0)  # for a unit period; scaled by 1 / P(p)
+
+    def _grid(self, p: float):
+        P = self.period(p)
+        return np.arange(self.M) * P / self.M, self.D1 / P
+
+    def residual(self, x: np.ndarray, p: float) -> np.ndarray:
+        t, D = self._grid(p)
+        Z = x.reshape(self.M, self.dim)
+        F = np.array([self.rhs(tj, zj, p) for tj, zj in zip(t, Z, strict=True)])
+        return (D @ Z - F).ravel()
+
+    def jacobian(self, x: np.ndarray, p: float) -> np.ndarray:
+        t, D = self._grid(p)
+        Z = x.reshape(self.M, self.dim)
+        J = np.kron(D, np.eye(self.dim))
+        for j, (tj, zj) in enumerate(zip(t, Z, strict=True)):
+            s = slice(j * self.dim, (j + 1) * self.dim)
+            J[s, s] -= self.jac(tj, zj, p)
+        return J
+
+    def floquet(self, x: np.ndarray, p: float) -> FloquetResult:
+        return orbit_floquet(
+            lambda t, z: self.jac(t, z, p), x.reshape(self.M, self.dim), self.period(p)
+        )
+
+    def samples(self, z0_of_t: Callable[[np.ndarray], np.ndarray], p: float) -> np.ndarray:
+        """x from a function of time (e.g. a time-stepped orbit's dense output)."""
+        t, _ = self._grid(p)
+        return np.asarray(z0_of_t(t)).reshape(self.M, self.dim).ravel()
+
+
+def newton(problem: BranchProblem, x: np.ndarray, p: float, tol: float = 1e-10, maxiter: int = 30):
+    """Newton on R(x, p) = 0 at fixed p; returns (x, converged)."""
+    for _ in range(maxiter):
+        R = problem.residual(x, p)
+        dx = sla.solve(problem.jacobian(x, p), -R)
+        x = x + dx
+        if np.max(np.abs(dx)) <= tol * max(1.0, np.max(np.abs(x))):
+            return x, True
+    return x, False
+
+
+@dataclass
+class BranchPoint:
+    p: float
+    x: np.ndarray
+    floquet: FloquetResult
+    tangent_p: float  #: dp/ds
+
+    @property
+    def stable(self) -> bool:
+        return self.floquet.stable
+
+
+@dataclass
+class Bifurcation:
+    kind: str  #: "fold", "period doubling" or "torus"
+    p: float  #: estimated parameter value
+    index: int  #: branch point just after it
+
+
+@dataclass
+class Branch:
+    points: list[BranchPoint] = field(default_factory=list)
+    bifurcations: list[Bifurcation] = field(default_factory=list)
+    message: str = ""
+
+    def folds(self) -> list[float]:
+        return [b.p for b in self.bifurcations if b.kind == "fold"]
+
+
+def _counts(fl: FloquetResult) -> tuple[int, int]:
+    """(real multipliers below -1, complex ones outside the unit circle)."""
+    mu = fl.multipliers
+    real = np.abs(mu.imag) <= 1e-7 * np.maximum(np.abs(mu), 1e-300)
+    outside = np.abs(mu) > 1.0
+    return int(np.sum(real & outside & (mu.real < 0))), int(np.sum(~real & outside))
+
+
+def _tangent(problem: BranchProblem, x, p, prev: np.ndarray, w: np.ndarray) -> np.ndarray:
+    """Unit (weighted) tangent of the branch at (x, p), oriented along `prev`."""
+    A = np.vstack([np.column_stack([problem.jacobian(x, p), problem.dR_dp(x, p)]), prev * w * w])
+    rhs = np.zeros(A.shape[0])
+    rhs[-1] = 1.0
+    t = sla.solve(A, rhs)
+    t /= np.linalg.norm(t * w)
+    return t if np.dot(t * w * w, prev) >= 0 else -t
+
+
+def _correct(problem: BranchProblem, y_pred, t, w, tol: float, maxiter: int = 8):
+    """Newton on [R(y); t.W^2 (y - y_pred)] = 0; returns (y, iterations) or (None, maxiter)."""
+    y = y_pred.copy()
+    for it in range(1, maxiter + 1):
+        x, p = y[:-1], y[-1]
+        R = problem.residual(x, p)
+        G = np.append(R, np.dot(t * w * w, y - y_pred))
+        A = np.vstack([np.column_stack([problem.jacobian(x, p), problem.dR_dp(x, p)]), t * w * w])
+        try:
+            dy = sla.solve(A, -G)
+        except (sla.LinAlgError, ValueError):
+            return None, maxiter
+        y = y + dy
+        if not np.all(np.isfinite(y)):
+            return None, maxiter
+        if np.max(np.abs(dy * w)) <= tol:
+            return y, it
+    return None, maxiter
+
+
+def _most_negative(fl: FloquetResult) -> float:
+    mu = fl.multipliers
+    real = mu[(np.abs(mu.imag) <= 1e-7 * np.maximum(np.abs(mu), 1e-300)) & (mu.real < 0)]
+    return float(np.min(real.real)) if real.size else 0.0
+
+
+def _crossing_p(a: BranchPoint, b: BranchPoint) -> float:
+    """p where the most negative real multiplier passes -1 (linear between a and b)."""
+    ma, mb = _most_negative(a.floquet), _most_negative(b.floquet)
+    if ma == mb or ma == 0.0 or mb == 0.0:
+        return 0.5 * (a.p + b.p)
+    return a.p + (-1.0 - ma) / (mb - ma) * (b.p - a.p)
+
+
+def _fold_p(s: list[float], p: list[float]) -> float:
+    """Vertex of the parabola through three (s, p) points (the fold's p)."""
+    c = np.polyfit(np.asarray(s) - s[1], p, 2)
+    if c[0] == 0.0:
+        return p[1]
+    sv = -c[1] / (2.0 * c[0])
+    return float(np.polyval(c, sv))
+
+
+def continue_branch(
+    problem: BranchProblem,
+    x0: np.ndarray,
+    p0: float,
+    p_range: tuple[float, float],
+    ds: float,
+    ds_max: float | None = None,
+    max_points: int = 400,
+    p_scale: float = 1.0,
+    x_scale: float = 1.0,
+    direction: float = 1.0,
+    tol: float = 1e-9,
+    on_point: Callable[[BranchPoint], None] | None = None,
+) -> Branch:
+    """Follow the orbit x0 at p0 (converged first) while p stays in p_range."""
+    branch = Branch()
+    x, ok = newton(problem, np.asarray(x0, dtype=float), p0)
+    if not ok:
+        branch.message = f"no periodic orbit at p = {p0:g} from the given start"
+        return branch
+    w = np.append(np.full(x.size, x_scale / math.sqrt(x.size)), 1.0 / p_scale)
+    prev = np.zeros(x.size + 1)
+    prev[-1] = direction
+    y = np.append(x, p0)
+    t = _tangent(problem, x, p0, prev, w)
+    ds_max = ds_max or 8.0 * ds
+    arc = [0.0]
+    branch.points.append(BranchPoint(p0, x, problem.floquet(x, p0), float(t[-1])))
+    lo, hi = min(p_range), max(p_range)
+    while len(branch.points) < max_points:
+        y_new, iters = _correct(problem, y + ds * t, t, w, tol)
+        if y_new is None:
+            ds *= 0.5
+            if ds < 1e-6 * ds_max:
+                branch.message = f"step size collapsed at p = {y[-1]:.6g}"
+                break
+            continue
+        t = _tangent(problem, y_new[:-1], y_new[-1], t, w)
+        y = y_new
+        arc.append(arc[-1] + ds)
+        pt = BranchPoint(float(y[-1]), y[:-1].copy(), problem.floquet(y[:-1], y[-1]), float(t[-1]))
+        branch.points.append(pt)
+        if on_point is not None:
+            on_point(pt)
+        _detect(branch, arc)
+        if not lo <= y[-1] <= hi:
+            branch.message = f"left the range at p = {y[-1]:.6g}"
+            break
+        if iters <= 4:
+            ds = min(ds * 1.3, ds_max)
+    else:
+        branch.message = f"stopped after {max_points} points"
+    return branch
+
+
+def _detect(branch: Branch, arc: list[float]) -> None:
+    """Bifurcations between the last two points of the branch."""
+    pts = branch.points
+    if len(pts) < 2:
+        return
+    a, b = pts[-2], pts[-1]
+    i = len(pts) - 1
+    if a.tangent_p * b.tangent_p < 0.0:
+        j = max(i - 1, 1)
+        p = _fold_p(arc[j - 1 : j + 2], [q.p for q in pts[j - 1 : j + 2]]) if i >= 2 else b.p
+        branch.bifurcations.append(Bifurcation("fold", p, i))
+    (na, ca), (nb, cb) = _counts(a.floquet), _counts(b.floquet)
+    if na != nb:
+        branch.bifurcations.append(Bifurcation("period doubling", _crossing_p(a, b), i))
+    if ca != cb:
+        branch.bifurcations.append(Bifurcation("torus", 0.5 * (a.p + b.p), i))

@@ -1,0 +1,180 @@
+"""Floquet multipliers (rotbeam.solve.floquet) against closed forms, finite differences of the
+period map and the harmonic-balance folds of a Duffing oscillator; unstable orbits are never
+reported as the steady state."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from scipy.integrate import solve_ivp
+
+from rotbeam.model.elastica import DiscreteElastica
+from rotbeam.model.modes import dimensionless_frequencies
+from rotbeam.model.params import Beam, Dimensionless, Drive, Effects
+from rotbeam.solve.continuation import FirstOrderProblem, continue_branch
+from rotbeam.solve.floquet import beam_floquet, orbit_floquet
+from rotbeam.solve.numerics import Numerics
+from rotbeam.solve.periodic import solve_periodic, solve_periodic_adaptive
+from rotbeam.solve.steady import steady_state
+
+NO_EULER = Effects(centrifugal=True, softening=True, euler=False, damping=True)
+
+
+def _linear_beam(amplitude: float, N: int = 12):
+    dl = Dimensionless.from_physical(Beam(), Drive(omega0=20.0, f_d=3.0, amplitude=amplitude),
+                                     NO_EULER)  # fmt: skip
+    model = DiscreteElastica(N, dl.hub_ratio, dl.eta, NO_EULER)
+    res = solve_periodic(dl, N, 17)
+    assert res.converged and np.max(np.abs(res.theta)) == 0.0  # the straight beam
+    return dl, model, beam_floquet(model, dl, res.theta, res.theta_t)
+
+
+def test_linear_beam_multipliers_closed_form():
+    """Steady rotation: mu = exp(lambda P), lambda = -eta/2 +- i sqrt(w^2 - eta^2/4), w from the
+    eigenproblem of rotbeam.model.modes (its own linear operators, not the Jacobian)."""
+    N = 12
+    dl, _, fl = _linear_beam(0.0, N)
+    w = dimensionless_frequencies(dl.lam0, dl.hub_ratio, N - 1, N, True)
+    wd = np.sqrt(w**2 - dl.eta**2 / 4.0)
+    assert np.all(w > dl.eta / 2.0)  # all underdamped
+    lam = np.concatenate([-dl.eta / 2 + 1j * wd, -dl.eta / 2 - 1j * wd])
+    exact = np.exp(lam * dl.period)
+    assert np.allclose(np.abs(fl.multipliers), math.exp(-dl.eta * dl.period / 2), rtol=1e-9)
+    err = max(float(np.min(np.abs(exact - mu))) for mu in fl.multipliers)
+    assert err < 1e-8  # moduli and phases (damped frequencies, mod 2 pi / P)
+    assert fl.stable
+
+
+def test_parametrically_modulated_beam_keeps_mass_proportional_decay():
+    """lam(t) = lam0 + alpha sin(w t) without Euler load: the straight beam is a periodic
+    orbit of a time-varying linear system; with damping eta M, z = e^{-eta t/2} y and the y
+    system is conservative, so away from parametric resonance every |mu| = exp(-eta P / 2)."""
+    dl, _, fl = _linear_beam(1.0)
+    assert np.allclose(np.abs(fl.multipliers), math.exp(-dl.eta * dl.period / 2), rtol=1e-8)
+    # the modulation does move the phases (this is not the steady-rotation case again)
+    _, _, steady = _linear_beam(0.0)
+    assert (
+        np.max(np.abs(np.sort_complex(fl.multipliers) - np.sort_complex(steady.multipliers))) > 1e-3
+    )
+
+
+def test_monodromy_against_finite_differences_of_the_period_map():
+    """Full nonlinear model, resonant drive: columns of Phi against central differences of the
+    time-stepped one-period map (Radau at rtol 1e-11)."""
+    N = 8
+    dl = Dimensionless.from_physical(Beam(), Drive(omega0=5.0, f_d=7.0), Effects())
+    model = DiscreteElastica(N, dl.hub_ratio, dl.eta, dl.effects)
+    res = solve_periodic_adaptive(dl, N, tail_tol=1e-5)
+    assert res.converged and res.harmonic_tail < 1e-5
+    fl = beam_floquet(model, dl, res.theta, res.theta_t)
+    n = model.n
+
+    def rhs(t, z):
+        acc, _, _ = model.acceleration(z[:n], z[n:], dl.lam(t), dl.lam_dot(t))
+        return np.concatenate([z[n:], acc])
+
+    def jac(t, z):
+        return model.first_order_jacobian(z[:n], z[n:], dl.lam(t), dl.lam_dot(t))
+
+    def period_map(z0):
+        sol = solve_ivp(rhs, (0.0, dl.period), z0, method="Radau", rtol=1e-11, atol=1e-13,
+                        jac=jac)  # fmt: skip
+        return sol.y[:, -1]
+
+    z0 = np.concatenate([res.theta[:, 0], res.theta_t[:, 0]])
+    eps = 1e-6
+    fd = np.column_stack(
+        [(period_map(z0 + eps * e) - period_map(z0 - eps * e)) / (2 * eps) for e in np.eye(2 * n)]
+    )
+    rel = np.max(np.abs(fl.monodromy - fd)) / np.max(np.abs(fd))
+    assert rel < 1e-3
+    mu_fd = np.linalg.eigvals(fd)
+    assert abs(fl.max_abs - np.max(np.abs(mu_fd))) < 1e-4
+
+
+# --- Duffing oscillator x'' + c x' + k x + b x^3 = F cos(w t) -----------------------------------
+C, K, B, F = 0.1, 1.0, 0.1, 0.3
+
+
+def _duffing_problem(M: int = 33) -> FirstOrderProblem:
+    def rhs(t, z, w):
+        return np.array([z[1], -C * z[1] - K * z[0] - B * z[0] ** 3 + F * math.cos(w * t)])
+
+    def jac(t, z, w):
+        return np.array([[0.0, 1.0], [-K - 3.0 * B * z[0] ** 2, -C]])
+
+    return FirstOrderProblem(rhs, jac, lambda w: 2.0 * math.pi / w, 2, M)
+
+
+def _linear_start(problem: FirstOrderProblem, w: float) -> np.ndarray:
+    t = np.arange(problem.M) * 2.0 * math.pi / w / problem.M
+    A = F / (K - w * w)
+    return np.column_stack([A * np.cos(w * t), -A * w * np.sin(w * t)]).ravel()
+
+
+def _harmonic_balance_folds() -> list[float]:
+    """One-harmonic balance [(k - w^2) A + 3/4 b A^3]^2 + (c w A)^2 = F^2: the frequencies where
+    w(A) is stationary on the curve (the folds of the backbone-bent resonance)."""
+    A = np.linspace(1e-3, 10.0, 400001)
+    kap = K + 0.75 * B * A * A
+    disc = (2 * kap - C * C) ** 2 - 4 * (kap * kap - F * F / (A * A))
+    ok = disc >= 0
+    u = ((2 * kap - C * C) + np.sqrt(np.where(ok, disc, 0.0))) / 2.0
+    w = np.where(ok & (u > 0), np.sqrt(np.abs(u)), np.nan)
+    d = np.sign(np.diff(w))
+    idx = np.where(d[:-1] * d[1:] < 0)[0] + 1
+    return sorted(float(v) for v in w[idx])
+
+
+def test_duffing_fold_frequencies_against_harmonic_balance():
+    """Continuation through both folds; their frequencies within 0.5 % of the one-harmonic
+    balance (the third harmonic, b A^3 / 32 ~ 2 % of A, shifts them by ~0.1 %)."""
+    pr = _duffing_problem()
+    br = continue_branch(pr, _linear_start(pr, 0.5), 0.5, (0.5, 2.5), ds=0.05, ds_max=0.2)
+    folds = sorted(br.folds())
+    hb = _harmonic_balance_folds()
+    assert len(folds) == 2 and len(hb) == 2
+    assert np.allclose(folds, hb, rtol=5e-3)
+    # between the folds the branch is the unstable middle one: a real multiplier above +1
+    i0, i1 = sorted(b.index for b in br.bifurcations if b.kind == "fold")
+    middle = br.points[i0:i1]
+    assert middle and all(not q.stable and q.floquet.crossing() == "fold" for q in middle)
+    assert all(q.stable for q in br.points[: i0 - 1] + br.points[i1 + 1 :])
+
+
+def test_unstable_duffing_orbit_is_attracted_away_from():
+    """The middle-branch orbit, time stepped from a push along its unstable Floquet vector,
+    leaves it and settles on a stable orbit of the same drive (different amplitude)."""
+    pr = _duffing_problem()
+    br = continue_branch(pr, _linear_start(pr, 0.5), 0.5, (0.5, 2.5), ds=0.05, ds_max=0.2)
+    q = next(q for q in br.points if not q.stable)
+    Z = q.x.reshape(pr.M, 2)
+    fl = orbit_floquet(lambda t, z: pr.jac(t, z, q.p), Z, pr.period(q.p))
+    assert fl.max_abs > 1.0
+    w, V = np.linalg.eig(fl.monodromy)
+    v = np.real(V[:, np.argmax(np.abs(w))])
+    P = pr.period(q.p)
+    sol = solve_ivp(lambda t, z: pr.rhs(t, z, q.p), (0, 200 * P), Z[0] + 0.01 * v, rtol=1e-9,
+                    atol=1e-11, t_eval=np.arange(190, 201) * P)  # fmt: skip
+    amp_middle = np.max(np.abs(Z[:, 0]))
+    assert np.max(np.abs(np.diff(sol.y[0]))) < 1e-6  # settled (period-1)
+    assert abs(abs(sol.y[0, -1]) - abs(Z[0, 0])) > 0.05 * amp_middle  # not the middle orbit
+
+
+@pytest.mark.parametrize("integrate", [False, True])
+def test_beam_unstable_orbit_not_reported_as_steady(monkeypatch, integrate):
+    """Force the beam's collocated orbit to count as unstable: it is not the steady state
+    (integrate=False: status 2; integrate=True: time stepping decides, message says so)."""
+    import rotbeam.solve.floquet as floquet
+
+    monkeypatch.setattr(floquet, "STABLE_MARGIN", 0.5)  # |mu|max ~ 0.66-0.95 now "unstable"
+    dl = Dimensionless.from_physical(Beam(), Drive(omega0=5.0, f_d=2.0), Effects())
+    res = steady_state(dl, Numerics(N=10, integrate=integrate, max_seconds=60))
+    assert res.floquet is not None and not res.floquet.stable
+    if integrate:
+        assert "collocated orbit unstable" in res.message
+        assert not res.converged and res.status != 0  # never "verified by one period"
+    else:
+        assert res.status == 2 and not res.converged and "unstable" in res.message
