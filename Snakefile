@@ -31,3 +31,7 @@ rule all:
     default_target: True
     input:
         all_targets(),
+
+
+# every rule with a script reruns when the rotbeam code that script runs changes
+check_code_versions(workflow.rules)

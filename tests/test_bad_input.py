@@ -12,8 +12,6 @@ import copy
 import io
 import json
 import math
-import os
-import shutil
 import subprocess
 import sys
 import tempfile
@@ -21,6 +19,7 @@ from pathlib import Path
 
 import pytest
 import yaml
+from conftest import ROOT, snakemake_env
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -30,7 +29,6 @@ from rotbeam.config.scenefile import load_yaml
 from rotbeam.config.schema import merge_config
 from rotbeam.simulate.studies import lines_from_config, validate_config
 
-ROOT = Path(__file__).resolve().parents[1]
 SCHEMA = ROOT / "workflow" / "schemas" / "config.schema.yaml"
 FULL = load_yaml((ROOT / "config" / "config.yaml").read_text())
 # what the workflow runs with --configfile config/quick.yaml: quick.yaml merged over config.yaml
@@ -300,16 +298,6 @@ def test_shipped_configs_are_valid():
         assert validate_config(cfg, SCHEMA)["beam"] == cfg["beam"]
 
 
-@pytest.fixture(scope="module")
-def workflow_copy(tmp_path_factory):
-    work = tmp_path_factory.mktemp("wf_bad")
-    shutil.copy(ROOT / "Snakefile", work)
-    shutil.copytree(ROOT / "config", work / "config")
-    shutil.copytree(ROOT / "workflow", work / "workflow")
-    shutil.copytree(ROOT / "profiles", work / "profiles")  # the workflow profile
-    return work
-
-
 SNAKEMAKE_CASES = {
     "threshold outside (0, 1)": ("main_threshold: 1.5\n", [], ["main_threshold = 1.5", "(0, 1)"]),
     "N too small": ("numerics: {N: 2}\n", [], ["numerics.N = 2", "[3, 2000]"]),
@@ -324,7 +312,7 @@ def test_workflow_stops_before_any_job_with_the_message(workflow_copy, tmp_path)
     """`snakemake -n` (and one real run) with a bad config: exit 2, one line, no job, no output.
 
     The cases run concurrently (each is a parse that stops at validation)."""
-    env = dict(os.environ, OPENBLAS_NUM_THREADS="1")
+    env = snakemake_env()  # this checkout's rotbeam
     procs = {}
     for k, (name, (overlay, extra, _)) in enumerate(SNAKEMAKE_CASES.items()):
         bad = tmp_path / f"bad{k}.yaml"

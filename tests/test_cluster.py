@@ -7,20 +7,15 @@ at parse time), every job is a fresh snakemake process that rebuilds its params 
 and the jobs share only files.  The lines computed this way must equal the same lines computed
 locally."""
 
-import os
-import shutil
-import subprocess
-import sys
 from pathlib import Path
 
 import pandas as pd
 import pytest
+from conftest import QUICK, copy_workflow, snakemake
 
 pytest.importorskip("snakemake_executor_plugin_cluster_generic")
 
-ROOT = Path(__file__).resolve().parents[1]
 LINES = ["results/sims/ref/fig3.csv", "results/sims/ref/cmax100.csv"]
-ENV = dict(os.environ, OPENBLAS_NUM_THREADS="1")
 SUBMIT = """#!/usr/bin/env bash
 # stand-in batch system: run the job script in the background, print its job id
 nohup bash "$1" > "$1.out" 2>&1 &
@@ -29,35 +24,27 @@ echo "$!"
 
 
 def workflow_copy(work: Path) -> Path:
-    work.mkdir()
-    shutil.copy(ROOT / "Snakefile", work)
-    for d in ("config", "workflow", "profiles"):
-        shutil.copytree(ROOT / d, work / d)
+    copy_workflow(work)
     submit = work / "submit.sh"
     submit.write_text(SUBMIT)
     submit.chmod(0o755)
     return work
 
 
-def snakemake(work: Path, *args: str) -> subprocess.CompletedProcess:
-    # --configfile takes every word after it: it goes last
-    cmd = [sys.executable, "-m", "snakemake", *args, "--configfile", "config/quick.yaml"]
-    return subprocess.run(cmd, cwd=work, env=ENV, capture_output=True, text=True, timeout=600)
-
-
 CLUSTER = ["--executor", "cluster-generic", "--cluster-generic-submit-cmd", "./submit.sh"]
 
 
+@pytest.mark.slow
 def test_cluster_jobs_equal_local_jobs(tmp_path):
     """Two sweep lines submitted through the executor equal the same lines run locally.  (A dry
     run does not catch the missing --cores: snakemake then assumes one core.)"""
     cluster = workflow_copy(tmp_path / "cluster")
-    p = snakemake(cluster, *LINES, *CLUSTER, "--jobs", "2")
+    p = snakemake(cluster, *LINES, *CLUSTER, "--jobs", "2", *QUICK, timeout=600)
     assert p.returncode == 0, p.stderr[-3000:]
     submitted = (p.stdout + p.stderr).count("with external jobid")
     assert submitted == len(LINES), "the jobs did not go through the executor"
     local = workflow_copy(tmp_path / "local")
-    p = snakemake(local, *LINES, "--cores", "2")
+    p = snakemake(local, *LINES, "--cores", "2", *QUICK, timeout=600)
     assert p.returncode == 0, p.stderr[-3000:]
     for line in LINES:
         a, b = pd.read_csv(cluster / line), pd.read_csv(local / line)

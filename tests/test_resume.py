@@ -7,7 +7,6 @@ import hashlib
 import json
 import math
 import os
-import shutil
 import signal
 import subprocess
 import sys
@@ -18,6 +17,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 import pytest
+from conftest import QUICK, copy_workflow, job_counts, snakemake, snakemake_env
 
 import rotbeam.simulate.sweeps
 from rotbeam.analysis.boundary import boundary_table, c_per_threshold, fit_c
@@ -26,7 +26,6 @@ from rotbeam.report.io import atomic_write, write_csv
 from rotbeam.simulate.sweeps import COLUMNS, scan_line
 from rotbeam.solve.numerics import Numerics
 
-ROOT = Path(__file__).resolve().parents[1]
 REF_BEAM = dict(L=0.040, h=0.002, b=0.010, E=1.22e6, rho=1170.2, R=0.155, gamma=0.039)
 
 
@@ -181,38 +180,19 @@ def test_figures_and_time_series_are_written_through_the_atomic_writer(tmp_path)
 
 LINES = ["fig3", "fig4_w10", "cmax1", "cmax10", "cmax100", "cmax787"]
 TARGETS = [f"results/sims/ref/{name}.csv" for name in LINES]
-ENV = dict(os.environ, OPENBLAS_NUM_THREADS="1", PYTHONUNBUFFERED="1")
 JOB_PAUSE = 2.0  # seconds each line sleeps in the interrupt test (see there)
 
 
-def snakemake(work: Path, *args: str, timeout: float = 300) -> subprocess.CompletedProcess:
-    cmd = [sys.executable, "-m", "snakemake", *TARGETS, "--cores", "2", *args]
-    return subprocess.run(
-        [*cmd, "--configfile", "config/quick.yaml"],
-        cwd=work, env=ENV, capture_output=True, text=True, timeout=timeout,
-    )  # fmt: skip
+def run(work: Path, *args: str, timeout: float = 300):
+    return snakemake(work, *TARGETS, "--cores", "2", *args, *QUICK, timeout=timeout)
 
 
 def plan(work: Path) -> dict[str, str]:
     """`snakemake --summary`: output file -> 'no update' / 'update pending'."""
-    p = snakemake(work, "--summary")
+    p = run(work, "--summary")
     assert p.returncode == 0, p.stderr[-3000:]
     rows = [r.split("\t") for r in p.stdout.splitlines() if r.startswith("results/")]
     return {r[0]: r[-1] for r in rows}
-
-
-def jobs_run(text: str) -> dict[str, int]:
-    """The job-stats table snakemake prints before running (or with -n)."""
-    jobs, inside = {}, False
-    for row in text.splitlines():
-        parts = row.split()
-        if row.startswith("job ") and "count" in row:
-            inside = True
-        elif inside and parts and parts[0] == "total":
-            break
-        elif inside and len(parts) == 2 and parts[1].isdigit():
-            jobs[parts[0]] = int(parts[1])
-    return jobs
 
 
 def fingerprint(path: Path) -> tuple[int, str]:
@@ -230,18 +210,14 @@ def default_sigint() -> None:
     signal.signal(signal.SIGINT, signal.SIG_DFL)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("interrupt", ["SIGTERM", "Ctrl-C"])
 def test_interrupted_workflow_reruns_only_unfinished_jobs(tmp_path, interrupt):
     """SIGTERM is snakemake's graceful stop: running jobs finish and are recorded.  Ctrl-C
     (SIGINT to the process group) kills the running jobs; a job that had just written its
     output may stay marked incomplete (snakemake had no time to record it): its file is
     complete (atomic writes) but the rerun needs --rerun-incomplete and redoes that line."""
-    work = tmp_path / "wf"
-    work.mkdir()
-    shutil.copy(ROOT / "Snakefile", work)
-    shutil.copytree(ROOT / "config", work / "config")
-    shutil.copytree(ROOT / "workflow", work / "workflow")
-    shutil.copytree(ROOT / "profiles", work / "profiles")  # the workflow profile
+    work = copy_workflow(tmp_path / "wf")
     # Each line of this copy first sleeps JOB_PAUSE seconds, so that the signal can be aimed at a
     # moment when a job is running and snakemake's main thread is idle.  Aiming matters for
     # SIGTERM: snakemake's handler (JobScheduler.exit_gracefully, 9.27) takes the scheduler's
@@ -263,8 +239,8 @@ def test_interrupted_workflow_reruns_only_unfinished_jobs(tmp_path, interrupt):
     cmd = [sys.executable, "-m", "snakemake", *TARGETS, "--cores", "1"]
     with open(log, "w") as out:
         p = subprocess.Popen(
-            [*cmd, "--configfile", "config/quick.yaml"],
-            cwd=work, env=dict(ENV, PYTHONFAULTHANDLER="1"), stdout=out,
+            [*cmd, *QUICK],
+            cwd=work, env=snakemake_env(PYTHONFAULTHANDLER="1"), stdout=out,
             stderr=subprocess.STDOUT, start_new_session=True, preexec_fn=default_sigint,
         )  # fmt: skip
         # wait until one line is done and the next one has started, then a little longer, so
@@ -314,13 +290,13 @@ def test_interrupted_workflow_reruns_only_unfinished_jobs(tmp_path, interrupt):
         for t in TARGETS:
             assert pending[t] == ("update pending" if t in redo else "no update"), (t, pending)
     extra = ["--rerun-incomplete"] if marked else []
-    dry = snakemake(work, "-n", *extra)
+    dry = run(work, "-n", *extra)
     assert dry.returncode == 0, dry.stderr[-3000:]
-    assert jobs_run(dry.stdout) == {"sweep_line": len(redo)}
+    assert job_counts(dry.stdout) == {"sweep_line": len(redo)}
 
     # rerun to the end: the finished outputs of the first run are untouched
-    rerun = snakemake(work, *extra)
+    rerun = run(work, *extra)
     assert rerun.returncode == 0, rerun.stderr[-3000:]
-    assert jobs_run(rerun.stdout + rerun.stderr) == {"sweep_line": len(redo)}
+    assert job_counts(rerun.stdout + rerun.stderr) == {"sweep_line": len(redo)}
     assert all(complete_line(work / t) for t in TARGETS)
     assert {f: fingerprint(sims / f) for f in finished} == finished

@@ -7,15 +7,12 @@ Sweep lines here are made by the surrogate itself, so that "surrogate vs full" h
 from __future__ import annotations
 
 import math
-import os
-import shutil
-import subprocess
-import sys
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
 import pytest
+from conftest import ROOT, snakemake
 
 from rotbeam.analysis.surrogate_study import (
     peak_of_line,
@@ -32,7 +29,6 @@ from rotbeam.model.surrogate import steady_rms
 from rotbeam.report.surrogate_figures import southwell_figure, vs_full_figure
 from rotbeam.simulate.sweeps import resonance_frequency_hz
 
-ROOT = Path(__file__).resolve().parents[1]
 BEAM = {"L": 0.040, "h": 0.002, "b": 0.010, "E": 1.22e6, "rho": 1170.2, "R": 0.155, "gamma": 0.039}
 
 
@@ -97,28 +93,8 @@ def test_surrogate_against_itself_agrees(tmp_path):
     assert all((tmp_path / f).stat().st_size > 0 for f in ("v.pdf", "v.png", "s.pdf", "s.png"))
 
 
-@pytest.fixture(scope="module")
-def workflow_copy(tmp_path_factory):
-    work = tmp_path_factory.mktemp("swf")
-    shutil.copytree(ROOT / "config", work / "config")
-    shutil.copytree(ROOT / "workflow", work / "workflow")
-    shutil.copytree(ROOT / "profiles", work / "profiles")  # the workflow profile
-    text = (ROOT / "Snakefile").read_text()
-    if "surrogate.smk" not in text:
-        text = text.replace(
-            'include: "workflow/rules/tables.smk"\n',
-            'include: "workflow/rules/tables.smk"\ninclude: "workflow/rules/surrogate.smk"\n',
-        )
-    (work / "Snakefile").write_text(text)
-    return work
-
-
-def dry_run(work: Path, *args: str) -> subprocess.CompletedProcess:
-    env = dict(os.environ, PYTHONPATH=str(ROOT))  # this checkout's rotbeam
-    return subprocess.run(
-        [sys.executable, "-m", "snakemake", "-n", "--cores", "1", *args],
-        cwd=work, capture_output=True, text=True, timeout=300, env=env,
-    )  # fmt: skip
+def dry_run(work: Path, *args: str):
+    return snakemake(work, "-n", "--cores", "1", *args, timeout=300)
 
 
 def test_rules_are_wired(workflow_copy):

@@ -1,16 +1,13 @@
 """End to end: the quick config through Snakemake in a temporary copy of the workflow."""
 
 import json
-import shutil
-import subprocess
-import sys
 from pathlib import Path
 
 import pandas as pd
 import pytest
+from conftest import dry_run_jobs, job_counts, snakemake
 
-ROOT = Path(__file__).resolve().parents[1]
-SNAKEMAKE = [sys.executable, "-m", "snakemake"]
+pytestmark = pytest.mark.slow  # the quick config end to end: minutes
 
 
 def targets(workdir: Path) -> list[Path]:
@@ -37,26 +34,6 @@ def targets(workdir: Path) -> list[Path]:
     return out
 
 
-@pytest.fixture(scope="module")
-def quick_run(tmp_path_factory):
-    work = tmp_path_factory.mktemp("wf")
-    shutil.copy(ROOT / "Snakefile", work)
-    shutil.copytree(ROOT / "config", work / "config")
-    shutil.copytree(ROOT / "workflow", work / "workflow")
-    shutil.copytree(ROOT / "profiles", work / "profiles")  # the workflow profile
-    p = subprocess.run(
-        [*SNAKEMAKE, "--cores", "2", "--configfile", "config/quick.yaml"],
-        cwd=work,
-        capture_output=True,
-        text=True,
-        timeout=900,
-    )
-    assert p.returncode == 0, p.stderr[-3000:]
-    # the workflow profile is read (greedy job selection: see profiles/default/config.yaml)
-    assert "Using workflow specific profile profiles/default" in p.stderr, p.stderr[:3000]
-    return work
-
-
 def test_every_target_exists_and_is_not_empty(quick_run):
     missing = [str(t) for t in targets(quick_run) if not t.is_file() or t.stat().st_size == 0]
     assert not missing
@@ -69,30 +46,6 @@ def test_fitted_c_per_threshold(quick_run):
     assert (c[1:] > c[:-1]).all(), "a larger threshold must give a larger c"
     fit = json.loads((quick_run / "results/fig6/fit.json").read_text())
     assert 0 < fit["c"] < 1 and fit["c_stderr"] < 0.1
-
-
-def dry_run_jobs(work: Path, *extra: str) -> dict[str, int]:
-    p = subprocess.run(
-        [*SNAKEMAKE, "-n", "--cores", "1", "--configfile", "config/quick.yaml", *extra],
-        cwd=work,
-        capture_output=True,
-        text=True,
-        timeout=300,
-    )
-    assert p.returncode == 0, p.stderr[-3000:]
-    jobs, in_stats = {}, False
-    for line in p.stdout.splitlines():
-        if line.startswith("job ") and "count" in line:
-            in_stats = True
-            continue
-        if in_stats:
-            parts = line.split()
-            if not parts or parts[0] == "total":
-                break
-            if parts[0].startswith("---"):
-                continue
-            jobs[parts[0]] = int(parts[1])
-    return jobs
 
 
 def test_nothing_to_do_after_a_complete_run(quick_run):
@@ -114,12 +67,29 @@ def test_changing_the_grid_reruns_simulations(quick_run):
 def test_bad_config_stops_before_any_job(tmp_path, quick_run):
     bad = tmp_path / "bad.yaml"
     bad.write_text((quick_run / "config/quick.yaml").read_text() + "\nmain_threshold: 1.5\n")
-    p = subprocess.run(
-        [*SNAKEMAKE, "-n", "--cores", "1", "--configfile", str(bad)],
-        cwd=quick_run,
-        capture_output=True,
-        text=True,
-        timeout=300,
-    )
+    p = snakemake(quick_run, "-n", "--cores", "1", "--configfile", str(bad), timeout=300)
     assert p.returncode != 0
     assert "main_threshold" in (p.stdout + p.stderr)
+
+
+def test_every_job_logs_what_it_read_wrote_and_how_long(quick_run):
+    """Each job of the run left a non-empty log (one per job) that names every output it wrote,
+    and every result file is named by a log."""
+    jobs = job_counts((quick_run / "quick_run.log").read_text())
+    jobs.pop("all")
+    logs = sorted((quick_run / "logs").rglob("*.log"))
+    assert len(logs) == sum(jobs.values()), (jobs, logs)
+    written = set()
+    for log in logs:
+        text = log.read_text()
+        assert "reading" in text and "done in" in text, (log, text[-2000:])
+        names = [row.split(" wrote ", 1)[1].rsplit(" (", 1)[0] for row in text.splitlines()
+                 if " wrote results/" in row]  # fmt: skip
+        assert names and all(Path(quick_run, n).is_file() for n in names), (log, text[-2000:])
+        written.update(names)
+    results = {
+        str(f.relative_to(quick_run))
+        for f in (quick_run / "results").rglob("*")
+        if f.is_file() and f.name != "README.md"
+    }
+    assert results == written, results ^ written

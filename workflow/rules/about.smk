@@ -12,9 +12,9 @@ rule versions:
     conda:
         "../envs/rotbeam.yaml"
     params:
+        code=code_version("versions"),
         # a changed version reruns this rule (and only this one)
         versions=installed_versions(),
         checked=checked_versions(),
-        model_version=rotbeam.MODEL_VERSION,
     script:
         "../scripts/versions.py"

@@ -4,7 +4,6 @@
 rule boundary_table:
     input:
         lines=lambda w: boundary_line_files(w.beam),
-        code=CODE_ANALYSIS,
     output:
         "results/boundary/{beam}.csv",
     log:
@@ -14,6 +13,7 @@ rule boundary_table:
     conda:
         "../envs/rotbeam.yaml"
     params:
+        code=code_version("boundary_table"),
         thresholds=sorted(set(config["thresholds"]) | {config["main_threshold"]}),
         beam=lambda w: config["beam"] if w.beam == REF else FIG7_BEAMS[w.beam],
     script:
@@ -39,6 +39,8 @@ rule c_per_threshold:
         "benchmarks/c_per_threshold.tsv"
     conda:
         "../envs/rotbeam.yaml"
+    params:
+        code=code_version("c_per_threshold"),
     script:
         "../scripts/c_per_threshold.py"
 
@@ -50,7 +52,6 @@ rule fig5:
             "results/series/fig5_E{e}.csv",
             e=[format(float(e), "g") for e in config["fig5"]["e_max"]],
         ),
-        code=CODE_FIGURES,
     output:
         pdf=report(
             "results/fig5/phase_diagram.pdf",
@@ -65,6 +66,7 @@ rule fig5:
     conda:
         "../envs/rotbeam.yaml"
     params:
+        code=code_version("fig5"),
         threshold=config["main_threshold"],
     script:
         "../scripts/fig5.py"
@@ -73,7 +75,6 @@ rule fig5:
 rule fig6:
     input:
         boundary="results/boundary/ref.csv",
-        code=CODE_FIGURES,
     output:
         pdf=report(
             "results/fig6/critical_frequency.pdf",
@@ -89,6 +90,7 @@ rule fig6:
     conda:
         "../envs/rotbeam.yaml"
     params:
+        code=code_version("fig6"),
         threshold=config["main_threshold"],
     script:
         "../scripts/fig6.py"
@@ -99,7 +101,6 @@ rule figD9:
         ref="results/boundary/ref.csv",
         beams=expand("results/boundary/{beam}.csv", beam=sorted(FIG7_BEAMS)),
         cfit="results/tables/c_per_threshold.csv",
-        code=CODE_FIGURES,
     output:
         pdf=report(
             "results/figD9/thresholds.pdf",
@@ -113,6 +114,8 @@ rule figD9:
         "benchmarks/figD9.tsv"
     conda:
         "../envs/rotbeam.yaml"
+    params:
+        code=code_version("figD9"),
     script:
         "../scripts/figD9.py"
 
@@ -120,7 +123,6 @@ rule figD9:
 rule fig7:
     input:
         beams=expand("results/boundary/{beam}.csv", beam=sorted(FIG7_BEAMS)),
-        code=CODE_FIGURES,
     output:
         pdf=report(
             "results/fig7/collapse.pdf",
@@ -136,6 +138,7 @@ rule fig7:
     conda:
         "../envs/rotbeam.yaml"
     params:
+        code=code_version("fig7"),
         threshold=config["main_threshold"],
     script:
         "../scripts/fig7.py"

@@ -7,7 +7,7 @@ from snakemake.exceptions import WorkflowError
 from snakemake.utils import validate
 
 import rotbeam
-
+from rotbeam import provenance
 from rotbeam.config.errors import RotbeamInputError
 from rotbeam.simulate.studies import (
     REF,
@@ -50,22 +50,34 @@ try:
 except WorkflowError:
     BENCHMARK_THREADS = 2
 
-PKG = Path(rotbeam.__file__).parent
-# cheap downstream rules rerun when the package code they use changes
-CODE_ANALYSIS = [str(PKG / f) for f in ("analysis/boundary.py", "model/criterion.py")]
-CODE_FIGURES = [str(PKG / f) for f in ("report/figures.py", "report/style.py")]
-CODE_SOLVER = [
-    str(PKG / f)
-    for f in (
-        "bench/plan.py",
-        "bench/run.py",
-        "bench/report.py",
-        "model/elastica.py",
-        "solve/steady.py",
-        "solve/periodic.py",
-        "solve/trbdf2.py",
-    )
-]
+# A job reruns when the package code its script runs changes.  `code_version(script)` is a hash
+# of exactly the rotbeam modules the script imports (transitively: rotbeam.provenance), passed as
+# a params: entry, which Snakemake compares with the one each output was made with.  A params
+# entry rather than the module files as input: (their mtime changes with every comment, and a
+# docstring edit would rerun a 3-minute sweep): the hash is of the code without comments and
+# docstrings, so only what runs counts.  Derived, not a hand-bumped model version nor
+# hand-written file lists (they drifted).  Every rule with a script carries it
+# (check_code_versions, at the end of the Snakefile, stops the parse otherwise).
+PACKAGE_DIR = Path(rotbeam.__file__).parent
+SCRIPTS_DIR = Path(workflow.basedir) / "workflow" / "scripts"
+
+
+def code_version(script):
+    """The code hash of workflow/scripts/{script}.py (see above)."""
+    return provenance.code_version(SCRIPTS_DIR / f"{script}.py", PACKAGE_DIR)[1]
+
+
+def check_code_versions(rules):
+    """Every rule with a script carries params.code = code_version(that script)."""
+    for r in rules:
+        if r.script is None:
+            continue
+        script = Path(r.script).stem
+        if r.params.get("code") != code_version(script):
+            raise WorkflowError(
+                f"{r.name} (a rule with a script) needs params code=code_version({script!r}) "
+                "to rerun when the package code its script runs changes"
+            )
 
 
 def line_spec(wildcards):
@@ -114,15 +126,6 @@ def all_targets():
 PAPER_CLAIMS = "workflow/resources/paper_claims.yaml"
 REPRO = config["reproduction"]
 R7 = repro_fig7_variants(config)
-CODE_REPRO = [
-    str(PKG / f)
-    for f in (
-        "analysis/claims.py",
-        "analysis/collapse.py",
-        "analysis/hypotheses.py",
-        "report/reproduction_figures.py",
-    )
-]
 
 
 wildcard_constraints:

@@ -2,8 +2,6 @@
 
 
 rule fig1:
-    input:
-        code=CODE_FIGURES,
     output:
         pdf=report(
             "results/fig1/drive_profiles.pdf",
@@ -18,6 +16,7 @@ rule fig1:
     conda:
         "../envs/rotbeam.yaml"
     params:
+        code=code_version("fig1"),
         drive=config["fig1"],
         amplitude=config["amplitude"],
     script:
@@ -27,7 +26,6 @@ rule fig1:
 rule fig2:
     input:
         "results/series/shapes_fig2.csv",
-        code=CODE_FIGURES,
     output:
         pdf=report(
             "results/fig2/shapes_lab_frame.pdf",
@@ -41,6 +39,8 @@ rule fig2:
         "benchmarks/fig2.tsv"
     conda:
         "../envs/rotbeam.yaml"
+    params:
+        code=code_version("fig2"),
     script:
         "../scripts/fig2.py"
 
@@ -49,7 +49,6 @@ rule fig3:
     input:
         line="results/sims/ref/fig3.csv",
         series="results/series/fig3.csv",
-        code=CODE_FIGURES,
     output:
         pdf=report(
             "results/fig3/resonance.pdf",
@@ -63,6 +62,8 @@ rule fig3:
         "benchmarks/fig3.tsv"
     conda:
         "../envs/rotbeam.yaml"
+    params:
+        code=code_version("fig3"),
     script:
         "../scripts/fig3.py"
 
@@ -73,7 +74,6 @@ rule fig4:
             "results/sims/ref/fig4_w{w}.csv",
             w=[format(float(w), "g") for w in config["fig4"]["omega0"]],
         ),
-        code=CODE_FIGURES,
     output:
         pdf=report(
             "results/fig4/dynamic_vs_quasistatic.pdf",
@@ -89,6 +89,7 @@ rule fig4:
     conda:
         "../envs/rotbeam.yaml"
     params:
+        code=code_version("fig4"),
         threshold=config["main_threshold"],
         beam=config["beam"],
     script:
@@ -102,7 +103,6 @@ rule figB8:
             N=config["convergence"]["N"],
             w=[format(float(w), "g") for w in config["convergence"]["omega0"]],
         ),
-        code=CODE_FIGURES,
     output:
         pdf=report(
             "results/figB8/convergence.pdf",
@@ -117,13 +117,13 @@ rule figB8:
         "benchmarks/figB8.tsv"
     conda:
         "../envs/rotbeam.yaml"
+    params:
+        code=code_version("figB8"),
     script:
         "../scripts/figB8.py"
 
 
 rule figE10:
-    input:
-        code=CODE_FIGURES,
     output:
         pdf=report(
             "results/figE10/c0_vs_zeta.pdf",
@@ -138,6 +138,7 @@ rule figE10:
     conda:
         "../envs/rotbeam.yaml"
     params:
+        code=code_version("figE10"),
         spec=config["figE10"],
         beam=config["beam"],
     script:

@@ -4,8 +4,6 @@
 
 
 rule benchmark_accuracy:
-    input:
-        code=CODE_SOLVER,
     output:
         csv="results/performance/work_precision.csv",
         refs="results/performance/work_precision_references.csv",
@@ -28,6 +26,7 @@ rule benchmark_accuracy:
         "../envs/rotbeam.yaml"
     threads: BENCHMARK_THREADS
     params:
+        code=code_version("benchmark_accuracy"),
         plan=config.get("benchmark", {}),
     script:
         "../scripts/benchmark_accuracy.py"

@@ -13,12 +13,12 @@ rule repro_fig7_variant:
     conda:
         "../envs/rotbeam.yaml"
     params:
+        code=code_version("repro_fig7_variant"),
         beams=lambda w: R7[w.variant],
         spec={k: REPRO["fig7"][k] for k in ("c_max", "lo", "hi", "points")},
         amplitude=config["amplitude"],
         numerics=config["numerics"],
         effects=config["effects"],
-        model_version=rotbeam.MODEL_VERSION,
     script:
         "../scripts/repro_fig7_variant.py"
 
@@ -30,7 +30,6 @@ rule repro_fig7:
         ),
         ref_fit="results/fig6/fit.json",
         claims=PAPER_CLAIMS,
-        code=CODE_REPRO + CODE_ANALYSIS,
     output:
         csv="results/reproduction/fig7_hypotheses.csv",
         md=report(
@@ -52,6 +51,7 @@ rule repro_fig7:
     conda:
         "../envs/rotbeam.yaml"
     params:
+        code=code_version("repro_fig7"),
         variants=sorted(R7),
         beams=R7,
         threshold=config["main_threshold"],
@@ -64,7 +64,6 @@ rule repro_estar:
         boundary="results/boundary/ref.csv",
         line50=fig5_line,
         claims=PAPER_CLAIMS,
-        code=CODE_REPRO,
     output:
         csv="results/reproduction/estar_readings.csv",
         md=report(
@@ -80,6 +79,7 @@ rule repro_estar:
     conda:
         "../envs/rotbeam.yaml"
     params:
+        code=code_version("repro_estar"),
         beam=config["beam"],
         amplitude=config["amplitude"],
         threshold=config["main_threshold"],
@@ -91,7 +91,6 @@ rule repro_estar:
 rule repro_fn_zeta:
     input:
         claims=PAPER_CLAIMS,
-        code=CODE_REPRO,
     output:
         csv="results/reproduction/fn_zeta.csv",
         md=report(
@@ -107,6 +106,7 @@ rule repro_fn_zeta:
     conda:
         "../envs/rotbeam.yaml"
     params:
+        code=code_version("repro_fn_zeta"),
         beam=config["beam"],
         N=config["numerics"]["N"],
     script:
@@ -118,7 +118,6 @@ rule repro_figD9:
         grid=lambda w: fig7_grid_files(0.05),
         cfit="results/tables/c_per_threshold.csv",
         claims=PAPER_CLAIMS,
-        code=CODE_REPRO,
     output:
         pdf=report(
             "results/reproduction/figD9_window.pdf",
@@ -135,6 +134,7 @@ rule repro_figD9:
     conda:
         "../envs/rotbeam.yaml"
     params:
+        code=code_version("repro_figD9"),
         delta_points=REPRO["figD9"]["delta_points"],
     script:
         "../scripts/repro_figD9.py"
@@ -163,7 +163,6 @@ rule reproduction:
             s=["fig7", "estar", "fn_zeta", "figD9"],
         ),
         c_hypotheses=c_hypotheses_input,
-        code=CODE_REPRO,
     output:
         csv="results/reproduction/claims.csv",
         md=report(
@@ -178,6 +177,7 @@ rule reproduction:
     conda:
         "../envs/rotbeam.yaml"
     params:
+        code=code_version("reproduction"),
         threshold=config["main_threshold"],
         amplitude=config["amplitude"],
         convergence_tolerance=REPRO["convergence_tolerance"],

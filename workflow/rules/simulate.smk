@@ -11,10 +11,10 @@ rule sweep_line:
     conda:
         "../envs/rotbeam.yaml"
     params:
+        code=code_version("sweep_line"),
         spec=line_spec,
         numerics=config["numerics"],
         effects=config["effects"],
-        model_version=rotbeam.MODEL_VERSION,
     script:
         "../scripts/sweep_line.py"
 
@@ -29,10 +29,10 @@ rule scene_series:
     conda:
         "../envs/rotbeam.yaml"
     params:
+        code=code_version("scene_series"),
         spec=lambda w: SERIES[w.name],
         numerics=config["numerics"],
         effects=config["effects"],
-        model_version=rotbeam.MODEL_VERSION,
     script:
         "../scripts/scene_series.py"
 
@@ -47,11 +47,11 @@ rule shapes:
     conda:
         "../envs/rotbeam.yaml"
     params:
+        code=code_version("shapes"),
         beam=config["beam"],
         drive=config["fig2"],
         amplitude=config["amplitude"],
         numerics=config["numerics"],
         effects=config["effects"],
-        model_version=rotbeam.MODEL_VERSION,
     script:
         "../scripts/shapes.py"

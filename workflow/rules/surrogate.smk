@@ -1,19 +1,5 @@
 # One-mode Galerkin surrogate with Southwell stiffening (Sec. 6) beside the full model.
 # Cheap: no simulation of its own, the full model's numbers come from the sweep lines.
-SURROGATE_CODE = [
-    str(PKG / f)
-    for f in (
-        "model/surrogate.py",
-        "analysis/surrogate_study.py",
-        "report/surrogate_figures.py",
-        "model/modes.py",
-        "model/elastica.py",
-        "model/params.py",
-        "model/criterion.py",
-        "analysis/boundary.py",
-        "report/style.py",
-    )
-]
 SURROGATE_FIG4_LINES = expand(
     "results/sims/ref/fig4_w{w}.csv",
     w=[format(float(w), "g") for w in config["fig4"]["omega0"]],
@@ -23,7 +9,6 @@ SURROGATE_FIG4_LINES = expand(
 rule surrogate_southwell:
     input:
         lines=["results/sims/ref/fig3.csv", *SURROGATE_FIG4_LINES],
-        code=SURROGATE_CODE,
     output:
         csv="results/surrogate/southwell.csv",
         md=report(
@@ -44,6 +29,7 @@ rule surrogate_southwell:
     conda:
         "../envs/rotbeam.yaml"
     params:
+        code=code_version("surrogate_southwell"),
         beam=config["beam"],
         amplitude=config["amplitude"],
         c_max=config["surrogate"]["c_max"],
@@ -58,7 +44,6 @@ rule surrogate_vs_full:
         lines=boundary_line_files(REF),
         boundary="results/boundary/ref.csv",
         fit="results/fig6/fit.json",
-        code=SURROGATE_CODE,
     output:
         csv="results/surrogate/vs_full.csv",
         md=report(
@@ -82,6 +67,7 @@ rule surrogate_vs_full:
     conda:
         "../envs/rotbeam.yaml"
     params:
+        code=code_version("surrogate_vs_full"),
         beam=config["beam"],
         amplitude=config["amplitude"],
         effects=config["effects"],

@@ -16,6 +16,7 @@ rule table1:
     conda:
         "../envs/rotbeam.yaml"
     params:
+        code=code_version("table1"),
         beam=config["beam"],
     script:
         "../scripts/table1.py"
@@ -36,6 +37,7 @@ rule systems_table:
     conda:
         "../envs/rotbeam.yaml"
     params:
+        code=code_version("systems_table"),
         beam=config["beam"],
     script:
         "../scripts/systems_table.py"
@@ -56,6 +58,7 @@ rule c0_table:
     conda:
         "../envs/rotbeam.yaml"
     params:
+        code=code_version("c0_table"),
         thresholds=config["c0_thresholds"],
         beam=config["beam"],
     script:

@@ -7,12 +7,13 @@ import sys
 from rotbeam.bench.plan import plan_from_dict
 from rotbeam.bench.report import write_outputs
 from rotbeam.bench.run import run_benchmark
+from rotbeam.report.joblog import job_log
 
-with open(snakemake.log[0], "w") as log:
+with job_log(snakemake.log[0], snakemake.input, snakemake.output, snakemake.rule) as log:
     plan = plan_from_dict(snakemake.params.plan)
 
     def say(msg: str) -> None:
-        print(msg, file=log, flush=True)
+        log.info(msg)
         print(f"[benchmark_accuracy] {msg}", file=sys.stderr, flush=True)
 
     runs, refs = run_benchmark(plan, progress=say)

@@ -7,13 +7,15 @@ import pandas as pd
 from rotbeam.model.params import Beam
 from rotbeam.model.secondorder import c0_limit, c0_root
 from rotbeam.report.io import write_table
+from rotbeam.report.joblog import job_log
 
-zeta = Beam(**snakemake.params.beam).zeta
-printed = {0.02: 0.1414, 0.04: 0.2000, 0.06: 0.2449, 0.08: 0.2828, 0.10: 0.3162}
-rows = [
-    {"threshold": t, "c0_zeta0": c0_limit(t), "c0_paper": printed.get(round(t, 4)),
-     "c0_at_beam_zeta": c0_root(zeta, t), "beam_zeta": zeta}
-    for t in snakemake.params.thresholds
-]  # fmt: skip
-write_table(pd.DataFrame(rows), snakemake.output.csv, snakemake.output.md,
-            "c_0 for the canonical second-order system (App. E).")  # fmt: skip
+with job_log(snakemake.log[0], snakemake.input, snakemake.output, snakemake.rule):
+    zeta = Beam(**snakemake.params.beam).zeta
+    printed = {0.02: 0.1414, 0.04: 0.2000, 0.06: 0.2449, 0.08: 0.2828, 0.10: 0.3162}
+    rows = [
+        {"threshold": t, "c0_zeta0": c0_limit(t), "c0_paper": printed.get(round(t, 4)),
+         "c0_at_beam_zeta": c0_root(zeta, t), "beam_zeta": zeta}
+        for t in snakemake.params.thresholds
+    ]  # fmt: skip
+    write_table(pd.DataFrame(rows), snakemake.output.csv, snakemake.output.md,
+                "c_0 for the canonical second-order system (App. E).")  # fmt: skip

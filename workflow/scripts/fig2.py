@@ -5,5 +5,7 @@
 import pandas as pd
 
 from rotbeam.report.figures import fig2_shapes
+from rotbeam.report.joblog import job_log
 
-fig2_shapes(pd.read_csv(snakemake.input[0]), snakemake.output.pdf, snakemake.output.png)
+with job_log(snakemake.log[0], snakemake.input, snakemake.output, snakemake.rule):
+    fig2_shapes(pd.read_csv(snakemake.input[0]), snakemake.output.pdf, snakemake.output.png)

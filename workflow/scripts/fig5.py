@@ -5,8 +5,11 @@
 import pandas as pd
 
 from rotbeam.report.figures import fig5_phase
+from rotbeam.report.joblog import job_log
 
-fig5_phase(
-    pd.read_csv(snakemake.input.boundary), snakemake.params.threshold,
-    [pd.read_csv(f) for f in snakemake.input.series], snakemake.output.pdf, snakemake.output.png,
-)  # fmt: skip
+with job_log(snakemake.log[0], snakemake.input, snakemake.output, snakemake.rule):
+    fig5_phase(
+        pd.read_csv(snakemake.input.boundary), snakemake.params.threshold,
+        [pd.read_csv(f) for f in snakemake.input.series],
+        snakemake.output.pdf, snakemake.output.png,
+    )  # fmt: skip

@@ -8,9 +8,12 @@ import pandas as pd
 from rotbeam.analysis.boundary import fit_c
 from rotbeam.report.figures import fig6_critical
 from rotbeam.report.io import write_json
+from rotbeam.report.joblog import job_log
 
-b = pd.read_csv(snakemake.input.boundary)
-th = snakemake.params.threshold
-fit = fit_c(b[np.isclose(b["threshold"], th)])
-write_json(fit, snakemake.output.fit)
-fig6_critical(b, th, fit["c"], fit["c_stderr"], snakemake.output.pdf, snakemake.output.png)
+with job_log(snakemake.log[0], snakemake.input, snakemake.output, snakemake.rule) as log:
+    b = pd.read_csv(snakemake.input.boundary)
+    th = snakemake.params.threshold
+    fit = fit_c(b[np.isclose(b["threshold"], th)])
+    write_json(fit, snakemake.output.fit)
+    log.info("fit of f_d* = c f_0: %s", fit)
+    fig6_critical(b, th, fit["c"], fit["c_stderr"], snakemake.output.pdf, snakemake.output.png)

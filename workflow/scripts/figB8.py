@@ -6,7 +6,9 @@ import pandas as pd
 
 from rotbeam.report.figures import figB8_convergence
 from rotbeam.report.io import write_csv
+from rotbeam.report.joblog import job_log
 
-df = pd.concat([pd.read_csv(f) for f in snakemake.input.lines], ignore_index=True)
-write_csv(df, snakemake.output.table)
-figB8_convergence(df, snakemake.output.pdf, snakemake.output.png)
+with job_log(snakemake.log[0], snakemake.input, snakemake.output, snakemake.rule):
+    df = pd.concat([pd.read_csv(f) for f in snakemake.input.lines], ignore_index=True)
+    write_csv(df, snakemake.output.table)
+    figB8_convergence(df, snakemake.output.pdf, snakemake.output.png)

@@ -5,7 +5,9 @@
 import pandas as pd
 
 from rotbeam.report.figures import figD9_thresholds
+from rotbeam.report.joblog import job_log
 
-ref = pd.read_csv(snakemake.input.ref)
-figD9_thresholds(ref, pd.read_csv(snakemake.input.cfit), snakemake.output.pdf,
-                 snakemake.output.png)  # fmt: skip
+with job_log(snakemake.log[0], snakemake.input, snakemake.output, snakemake.rule):
+    ref = pd.read_csv(snakemake.input.ref)
+    figD9_thresholds(ref, pd.read_csv(snakemake.input.cfit), snakemake.output.pdf,
+                     snakemake.output.png)  # fmt: skip

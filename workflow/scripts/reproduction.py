@@ -17,33 +17,34 @@ from rotbeam.analysis.claims import (
 )
 from rotbeam.config.scenefile import load_yaml
 from rotbeam.report.io import write_csv, write_text
+from rotbeam.report.joblog import job_log
 from rotbeam.report.reproduction_figures import claims_markdown
 
-inp = snakemake.input
-_, claims = load_claims(load_yaml(open(inp.claims).read()))
-out = Outputs(
-    table1=pd.read_csv(inp.table1),
-    c_per_threshold=pd.read_csv(inp.c_per_threshold),
-    boundary_ref=pd.read_csv(inp.boundary_ref),
-    fig6_fit=json.load(open(inp.fig6_fit)),
-    fig7_fit=json.load(open(inp.fig7_fit)),
-    fig7_boundary=pd.concat([pd.read_csv(f) for f in inp.fig7_grid], ignore_index=True),
-    fig3_line=pd.read_csv(inp.fig3_line),
-    fig3_series=pd.read_csv(inp.fig3_series),
-    fig5_series=[pd.read_csv(f) for f in inp.fig5_series],
-    ref_lines=pd.concat([pd.read_csv(f) for f in inp.ref_lines], ignore_index=True),
-    c0_table=pd.read_csv(inp.c0_table),
-    convergence=pd.read_csv(inp.convergence),
-    main_threshold=float(snakemake.params.threshold),
-    amplitude=float(snakemake.params.amplitude),
-    convergence_tolerance=float(snakemake.params.convergence_tolerance),
-)
-ours = ours_values(out, claims)
-hyp = [pd.read_csv(f) for f in inp.studies] + [builtin_hypotheses(out, claims, ours)]
-hyp += [c_hypotheses_long(pd.read_csv(f)) for f in inp.c_hypotheses]
-hyp = pd.concat([h[HYPOTHESIS_COLUMNS] for h in hyp if len(h)], ignore_index=True)
-table = judge(claims, ours, hyp)
-with open(snakemake.log[0], "w") as log:
-    print(table[["id", "paper", "ours", "status"]].to_string(), file=log)
-write_csv(table, snakemake.output.csv)
-write_text(claims_markdown(table), snakemake.output.md)
+with job_log(snakemake.log[0], snakemake.input, snakemake.output, snakemake.rule) as log:
+    inp = snakemake.input
+    _, claims = load_claims(load_yaml(open(inp.claims).read()))
+    out = Outputs(
+        table1=pd.read_csv(inp.table1),
+        c_per_threshold=pd.read_csv(inp.c_per_threshold),
+        boundary_ref=pd.read_csv(inp.boundary_ref),
+        fig6_fit=json.load(open(inp.fig6_fit)),
+        fig7_fit=json.load(open(inp.fig7_fit)),
+        fig7_boundary=pd.concat([pd.read_csv(f) for f in inp.fig7_grid], ignore_index=True),
+        fig3_line=pd.read_csv(inp.fig3_line),
+        fig3_series=pd.read_csv(inp.fig3_series),
+        fig5_series=[pd.read_csv(f) for f in inp.fig5_series],
+        ref_lines=pd.concat([pd.read_csv(f) for f in inp.ref_lines], ignore_index=True),
+        c0_table=pd.read_csv(inp.c0_table),
+        convergence=pd.read_csv(inp.convergence),
+        main_threshold=float(snakemake.params.threshold),
+        amplitude=float(snakemake.params.amplitude),
+        convergence_tolerance=float(snakemake.params.convergence_tolerance),
+    )
+    ours = ours_values(out, claims)
+    hyp = [pd.read_csv(f) for f in inp.studies] + [builtin_hypotheses(out, claims, ours)]
+    hyp += [c_hypotheses_long(pd.read_csv(f)) for f in inp.c_hypotheses]
+    hyp = pd.concat([h[HYPOTHESIS_COLUMNS] for h in hyp if len(h)], ignore_index=True)
+    table = judge(claims, ours, hyp)
+    log.info("claims:\n%s", table[["id", "paper", "ours", "status"]].to_string())
+    write_csv(table, snakemake.output.csv)
+    write_text(claims_markdown(table), snakemake.output.md)

@@ -8,25 +8,27 @@ import pandas as pd
 
 from rotbeam.model.params import Beam, Drive, Effects
 from rotbeam.report.io import write_csv
+from rotbeam.report.joblog import job_log
 from rotbeam.simulate.scene import Scene, simulate
 from rotbeam.simulate.sweeps import numerics_from_config
 
-spec = snakemake.params.spec
-num = numerics_from_config(snakemake.params.numerics)
-num = replace(
-    num, rms_periods=int(spec["periods"]), samples_per_period=max(64, num.samples_per_period)
-)
-scene = Scene(
-    Beam(**spec["beam"]),
-    Drive(spec["omega0"], spec["amplitude"], spec["f_d"]),
-    Effects.from_list(snakemake.params.effects),
-    num,
-)
-with open(snakemake.log[0], "w") as log:
+with job_log(snakemake.log[0], snakemake.input, snakemake.output, snakemake.rule) as log:
+    spec = snakemake.params.spec
+    num = numerics_from_config(snakemake.params.numerics)
+    num = replace(
+        num, rms_periods=int(spec["periods"]), samples_per_period=max(64, num.samples_per_period)
+    )
+    scene = Scene(
+        Beam(**spec["beam"]),
+        Drive(spec["omega0"], spec["amplitude"], spec["f_d"]),
+        Effects.from_list(snakemake.params.effects),
+        num,
+    )
     res = simulate(scene)
     s = res.summary()
-    print({k: s[k] for k in ("rms_dynamic", "rms_quasistatic", "delta_rms", "converged",
-                             "message", "C_max", "E_max", "seconds")}, file=log)  # fmt: skip
+    keys = ("rms_dynamic", "rms_quasistatic", "delta_rms", "converged", "message", "C_max",
+            "E_max", "seconds")  # fmt: skip
+    log.info("scene %s: %s", snakemake.wildcards.name, {k: s[k] for k in keys})
     df = pd.DataFrame(res.time_series())
     for key in ("rms_dynamic", "rms_quasistatic", "delta_rms", "C_max", "E_max", "f_d", "omega0",
                 "f_n_hz", "converged"):  # fmt: skip

@@ -7,20 +7,21 @@ from dataclasses import replace
 from rotbeam.model.params import Beam, Drive, Effects
 from rotbeam.model.shapes import shapes_over_period
 from rotbeam.report.io import write_csv
+from rotbeam.report.joblog import job_log
 from rotbeam.simulate.scene import Scene, simulate
 from rotbeam.simulate.sweeps import numerics_from_config
 
-p = snakemake.params
-num = replace(
-    numerics_from_config(p.numerics),
-    rms_periods=1,
-    samples_per_period=max(8, 4 * p.drive["frames"]),
-)
-scene = Scene(
-    Beam(**p.beam), Drive(p.drive["omega0"], p.amplitude, p.drive["f_d"]),
-    Effects.from_list(p.effects), num,
-)  # fmt: skip
-with open(snakemake.log[0], "w") as log:
+with job_log(snakemake.log[0], snakemake.input, snakemake.output, snakemake.rule) as log:
+    p = snakemake.params
+    num = replace(
+        numerics_from_config(p.numerics),
+        rms_periods=1,
+        samples_per_period=max(8, 4 * p.drive["frames"]),
+    )
+    scene = Scene(
+        Beam(**p.beam), Drive(p.drive["omega0"], p.amplitude, p.drive["f_d"]),
+        Effects.from_list(p.effects), num,
+    )  # fmt: skip
     res = simulate(scene)
-    print(res.summary(), file=log)
+    log.info("scene: %s", res.summary())
     write_csv(shapes_over_period(res, p.drive["frames"]), snakemake.output[0])

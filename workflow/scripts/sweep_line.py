@@ -4,19 +4,17 @@
 
 from rotbeam.model.params import Beam, Effects
 from rotbeam.report.io import write_csv
+from rotbeam.report.joblog import job_log
 from rotbeam.simulate.studies import scan_frequencies
 from rotbeam.simulate.sweeps import numerics_from_config, scan_line
 
-spec = snakemake.params.spec
-numerics = dict(snakemake.params.numerics)
-if "N" in spec:  # the grid-convergence lines (Fig. B.8) study the raw grid: no extrapolation
-    numerics["N"] = spec["N"]
-    numerics["extrapolate"] = False
-with open(snakemake.log[0], "w") as log:
-
-    def say(msg: str) -> None:
-        print(msg, file=log, flush=True)
-
+with job_log(snakemake.log[0], snakemake.input, snakemake.output, snakemake.rule) as log:
+    say = log.info  # one line per point of the line (scan_line's progress)
+    spec = snakemake.params.spec
+    numerics = dict(snakemake.params.numerics)
+    if "N" in spec:  # the grid-convergence lines (Fig. B.8) study the raw grid: no extrapolation
+        numerics["N"] = spec["N"]
+        numerics["extrapolate"] = False
     f_ds = scan_frequencies(spec)
     say(f"line {snakemake.wildcards.line} of beam {snakemake.wildcards.beam}: {len(f_ds)} points")
     df = scan_line(

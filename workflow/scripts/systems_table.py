@@ -7,7 +7,9 @@ import pandas as pd
 from rotbeam.model.params import Beam
 from rotbeam.model.secondorder import systems_table
 from rotbeam.report.io import write_table
+from rotbeam.report.joblog import job_log
 
-df = pd.DataFrame(systems_table(Beam(**snakemake.params.beam)))
-write_table(df, snakemake.output.csv, snakemake.output.md,
-            "Table (systems): zeta, k, f_n; the beam row for the reference beam.")  # fmt: skip
+with job_log(snakemake.log[0], snakemake.input, snakemake.output, snakemake.rule):
+    df = pd.DataFrame(systems_table(Beam(**snakemake.params.beam)))
+    write_table(df, snakemake.output.csv, snakemake.output.md,
+                "Table (systems): zeta, k, f_n; the beam row for the reference beam.")  # fmt: skip

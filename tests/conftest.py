@@ -1,0 +1,96 @@
+"""What the workflow tests share: the repository root, a temporary copy of the workflow (and of
+the package, for tests that edit it), a Snakemake runner, and one quick-config run for all."""
+
+from __future__ import annotations
+
+import os
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+WORKFLOW_FILES = ("Snakefile", "config", "workflow", "profiles")  # profiles: the workflow profile
+QUICK = ("--configfile", "config/quick.yaml")
+
+
+def copy_workflow(work: Path, package: bool = False) -> Path:
+    """The workflow (Snakefile, config, rules, scripts, profile) copied into ``work``; with
+    ``package``, rotbeam/ too, at ``work / "rotbeam"`` (run it with ``package_root=work``)."""
+    work.mkdir(parents=True, exist_ok=True)
+    names = [*WORKFLOW_FILES, *(["rotbeam"] if package else [])]
+    for name in names:
+        src = ROOT / name
+        if src.is_dir():
+            shutil.copytree(src, work / name, ignore=shutil.ignore_patterns("__pycache__"))
+        else:
+            shutil.copy2(src, work / name)
+    return work
+
+
+def snakemake_env(package_root: Path = ROOT, **extra: str) -> dict[str, str]:
+    """The environment of a Snakemake run: rotbeam from ``package_root`` (not the installed
+    one), one BLAS thread per job."""
+    path = os.pathsep.join([str(package_root), *filter(None, [os.environ.get("PYTHONPATH")])])
+    return dict(
+        os.environ, PYTHONPATH=path, OPENBLAS_NUM_THREADS="1", PYTHONUNBUFFERED="1", **extra
+    )
+
+
+def snakemake(
+    work: Path, *args: str, package_root: Path = ROOT, timeout: float = 900, env=None
+) -> subprocess.CompletedProcess:
+    """``python -m snakemake *args`` in ``work`` (args go as given: put --configfile last, it
+    takes every word after it)."""
+    return subprocess.run(
+        [sys.executable, "-m", "snakemake", *args],
+        cwd=work,
+        env=env or snakemake_env(package_root),
+        capture_output=True,
+        text=True,
+        timeout=timeout,
+    )
+
+
+def job_counts(text: str) -> dict[str, int]:
+    """The job-stats table Snakemake prints before it runs (or with -n): rule -> jobs."""
+    jobs, inside = {}, False
+    for row in text.splitlines():
+        parts = row.split()
+        if row.startswith("job ") and "count" in row:
+            inside = True
+        elif inside and parts and parts[0] == "total":
+            break
+        elif inside and len(parts) == 2 and parts[1].isdigit():
+            jobs[parts[0]] = int(parts[1])
+    return jobs
+
+
+def dry_run_jobs(work: Path, *extra: str, package_root: Path = ROOT) -> dict[str, int]:
+    """The jobs a run of the quick config would run now (``snakemake -n``), without ``all``."""
+    p = snakemake(work, "-n", "--cores", "1", *extra, *QUICK, package_root=package_root)
+    assert p.returncode == 0, p.stderr[-3000:]
+    jobs = job_counts(p.stdout)
+    jobs.pop("all", None)
+    return jobs
+
+
+@pytest.fixture
+def workflow_copy(tmp_path) -> Path:
+    """A fresh copy of the workflow (no package copy, no results)."""
+    return copy_workflow(tmp_path / "wf")
+
+
+@pytest.fixture(scope="session")
+def quick_run(tmp_path_factory) -> Path:
+    """The whole quick config run once, in a copy of the workflow, shared by the tests that read
+    its results (they must not change it: copy it first).  Its output is in quick_run.log."""
+    work = copy_workflow(tmp_path_factory.mktemp("quick") / "wf")
+    p = snakemake(work, "--cores", "2", *QUICK)
+    (work / "quick_run.log").write_text(p.stdout + p.stderr)
+    assert p.returncode == 0, p.stderr[-3000:]
+    # the workflow profile is read (greedy job selection: see profiles/default/config.yaml)
+    assert "Using workflow specific profile profiles/default" in p.stderr, p.stderr[:3000]
+    return work
