@@ -1,11 +1,11 @@
 r"""The discrete model of Appendix A *as printed*, misprint by misprint, beside our re-derivation.
 
-`PrintedElastica` subclasses `rotbeam.elastica.DiscreteElastica` and switches on, one at a time or
-together, what the printed appendix has where `rotbeam.elastica` departs from it:
+`PrintedElastica` subclasses `rotbeam.model.elastica.DiscreteElastica` and switches on, one at a
+time or together, what the printed appendix has where `rotbeam.model.elastica` departs from it:
 
 * ``bracket``: the first bracket of Eqs. (Disc_tension_x/y), 1 + (delta - 1) s - delta s^2/4,
   taken literally.  As printed, n_x = C [bracket] + U L delta C c~ + ..., i.e. (units of
-  `rotbeam.params`, C = lam^2 / delta) the centrifugal tension is lam^2 [bracket] / delta +
+  `rotbeam.model.params`, C = lam^2 / delta) the centrifugal tension is lam^2 [bracket] / delta +
   lam^2 Q P cos(Theta), where the integral of lam^2 (r_o + x) is lam^2 [r_o (1 - s) +
   Q (ds/2 + P cos Theta)].  The difference is an extra tension lam^2 e(s) with
   e(s) = (1 - s^2/4) - (ds/2)(1 - s) (nonzero at the free end, where n must vanish); the Euler
@@ -17,10 +17,9 @@ together, what the printed appendix has where `rotbeam.elastica` departs from it
 * ``Kds``: K with 1/ds instead of 1/ds^2 (bending stiffness divided by N).
 
 The fourth printed slip, +2 I y_t in the n_y integrand of Eq. (NumT), only acts with Coriolis on
-(the paper switches Coriolis off): see `rotbeam.analysis_c_hypotheses` ("printed_ny_coriolis").
+(the paper switches Coriolis off): see `rotbeam.analysis.c_hypotheses` ("printed_ny_coriolis").
 
-`PrintedCollocation` is `rotbeam.periodic.Collocation` on such a model (its residual with the
-symmetric S~ when asked; its Jacobian stays ours, which only slows Newton down).
+`rotbeam.solve.periodic_printed` collocates the periodic orbit of such a model.
 """
 
 from __future__ import annotations
@@ -29,9 +28,9 @@ from dataclasses import replace
 
 import numpy as np
 
+from ..config.errors import RotbeamInputError
 from .elastica import DiscreteElastica
-from .params import Dimensionless, Effects
-from .periodic import Collocation
+from .params import Effects
 
 MISPRINTS = ("bracket", "U3", "symS", "Kds")
 
@@ -50,7 +49,9 @@ class PrintedElastica(DiscreteElastica):
         super().__init__(N, hub_ratio, eta, effects)
         bad = [m for m in misprints if m not in MISPRINTS]
         if bad:
-            raise ValueError(f"unknown misprint(s) {bad}; allowed: {MISPRINTS}")
+            raise RotbeamInputError(
+                f"misprints = {bad!r}: unknown; allowed: {', '.join(MISPRINTS)}"
+            )
         self.misprints = tuple(misprints)
         g = self.grid
         if "U3" in self.misprints:
@@ -107,21 +108,3 @@ class PrintedElastica(DiscreteElastica):
             dB = self.velocity_matrix(theta) - B
             acc = acc - lu_solve(lu, dB @ (theta_t**2), check_finite=False)
         return acc, lu, B
-
-
-class PrintedCollocation(Collocation):
-    """The periodic collocation of `rotbeam.periodic` on a `PrintedElastica`."""
-
-    def __init__(self, dl: Dimensionless, model: DiscreteElastica, M: int):
-        super().__init__(dl, model.grid.N, M)
-        self.model = model
-
-    def residual(self, X: np.ndarray) -> np.ndarray:
-        R = super().residual(X)
-        m = self.model
-        if isinstance(m, PrintedElastica) and "symS" in m.misprints:
-            V = self.D @ X
-            for j in range(X.shape[0]):
-                _, B = m.mass_and_gyro(X[j])
-                R[j] += (m.velocity_matrix(X[j]) - B) @ (V[j] ** 2)
-        return R
