@@ -129,7 +129,9 @@ def test_c_hypotheses_table_has_every_hypothesis_and_threshold(quick_run):
 
 def test_c_hypotheses_rerun_on_their_own_config_only(quick_run):
     jobs = dry_run_jobs(quick_run, "--config", "c_hypotheses={'points': 9}")
-    assert jobs == {"c_hypotheses": 1}, jobs
+    assert jobs.get("c_hypotheses") == 1, jobs
+    for sim in ("sweep_line", "scene_series", "shapes"):  # no other simulation reruns
+        assert sim not in jobs, jobs
     for other in ("thresholds=[0.05,0.2]", "numerics={'N': 14}", "boundary={'points': 9}"):
         assert "c_hypotheses" not in dry_run_jobs(quick_run, "--config", other), other
 
