@@ -25,6 +25,7 @@ include: "workflow/rules/performance.smk"
 include: "workflow/rules/reproduction.smk"
 include: "workflow/rules/about.smk"
 include: "workflow/rules/cluster.smk"
+include: "workflow/rules/c_hypotheses.smk"
 
 
 rule all:

@@ -31,6 +31,10 @@ def targets(workdir: Path) -> list[Path]:
         for s in ("southwell", "vs_full")
         for e in ("csv", "md", "pdf", "png")
     ]
+    out += [
+        workdir / "results" / "reproduction" / f"c_hypotheses.{e}"
+        for e in ("csv", "md", "pdf", "png")
+    ]
     return out
 
 
@@ -57,6 +61,32 @@ def test_changing_a_threshold_reruns_no_simulation(quick_run):
     assert jobs.get("boundary_table", 0) > 0 and jobs.get("c_per_threshold", 0) == 1
     for sim in ("sweep_line", "scene_series", "shapes"):
         assert sim not in jobs, jobs
+
+
+def test_c_hypotheses_table_has_every_hypothesis_and_threshold(quick_run):
+    import yaml
+
+    t = pd.read_csv(quick_run / "results/reproduction/c_hypotheses.csv")
+    assert list(t.columns[:4]) == ["hypothesis", "threshold", "c", "c_err"]
+    cfg = yaml.safe_load((quick_run / "config/quick.yaml").read_text())["c_hypotheses"]
+    full = yaml.safe_load((quick_run / "config/config.yaml").read_text())["c_hypotheses"]
+    grid = full["grid"]
+    rules = [f"grid_{s:g}Hz" for s in grid["step_hz"]] + [f"grid_{s:g}f0" for s in grid["step_f0"]]
+    names = cfg["hypotheses"] + [f"{h}+{r}" for h in grid["hypotheses"] for r in rules]
+    assert list(dict.fromkeys(t["hypothesis"])) == names
+    for _, sub in t.groupby("hypothesis", sort=False):
+        assert sub["threshold"].tolist() == full["thresholds"]
+    ours = t[t["hypothesis"] == "ours"]
+    assert (ours["c"] < ours["c_paper"] - 0.05).all()  # the gap the study is about
+
+
+def test_c_hypotheses_rerun_on_their_own_config_only(quick_run):
+    jobs = dry_run_jobs(quick_run, "--config", "c_hypotheses={'points': 9}")
+    assert jobs.get("c_hypotheses") == 1, jobs
+    for sim in ("sweep_line", "scene_series", "shapes"):  # no other simulation reruns
+        assert sim not in jobs, jobs
+    for other in ("thresholds=[0.05,0.2]", "numerics={'N': 14}", "boundary={'points': 9}"):
+        assert "c_hypotheses" not in dry_run_jobs(quick_run, "--config", other), other
 
 
 def test_changing_the_grid_reruns_simulations(quick_run):

@@ -60,6 +60,8 @@ def describe_allowed(schema: dict | None, root: dict | None = None) -> str:
     s = _resolve(schema, root or {})
     if "enum" in s:
         return "one of " + ", ".join(map(str, s["enum"]))
+    if "anyOf" in s:
+        return " or ".join(describe_allowed(x, root) for x in s["anyOf"])
     t = s.get("type")
     if t == "boolean":
         return "true or false"
@@ -94,7 +96,7 @@ def describe_allowed(schema: dict | None, root: dict | None = None) -> str:
     if t == "object":
         return "a mapping with keys " + ", ".join(s.get("properties", {}))
     if t == "string":
-        return "a string"
+        return f"a string matching {s['pattern']}" if "pattern" in s else "a string"
     return "valid"
 
 

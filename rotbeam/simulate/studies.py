@@ -143,7 +143,9 @@ def check_config(config: dict[str, Any], schema: dict | None = None) -> None:
         Beam(**config["beam"])
     except TypeError as exc:
         raise RotbeamInputError(f"config beam: {exc}") from None
-    for name in ("fig4", "boundary", "fig7"):
+    for name in ("fig4", "boundary", "fig7", "c_hypotheses"):
+        if name not in config:
+            continue
         lo, hi = config[name]["lo"], config[name]["hi"]
         if not lo < hi:
             raise RotbeamInputError(

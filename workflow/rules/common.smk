@@ -119,6 +119,9 @@ def all_targets():
     ]
     out += ["results/surrogate/speed.json", "results/about/versions.txt"]
     out += [f"results/reproduction/claims.{e}" for e in ("csv", "md")]
+    out += [
+        f"results/reproduction/c_hypotheses.{e}" for e in ("csv", "md", "pdf", "png")
+    ]
     return out
 
 
