@@ -6,7 +6,7 @@ Downstream of the simulations: a new threshold is a new table, not a new simulat
 from __future__ import annotations
 
 import math
-from collections.abc import Iterable
+from collections.abc import Iterable, Mapping
 
 import numpy as np
 import pandas as pd
@@ -15,6 +15,7 @@ from scipy.optimize import curve_fit
 from ..config.checks import check_threshold
 from ..model.criterion import critical_from_scan
 from ..model.params import Beam
+from ..model.secondorder import c0_limit
 
 
 def boundary_table(
@@ -94,14 +95,16 @@ def fit_c(table: pd.DataFrame, column: str = "f_d_root") -> dict:
     return out
 
 
-def c_per_threshold(table: pd.DataFrame) -> pd.DataFrame:
-    paper = {0.05: 0.311, 0.07: 0.345, 0.10: 0.385, 0.12: 0.404}
+def c_per_threshold(
+    table: pd.DataFrame, paper: Mapping[float, float] | None = None
+) -> pd.DataFrame:
+    """Fitted c per threshold (root and grid rule) beside App. E's c_0 and the printed c
+    (`paper`: threshold -> value, from workflow/resources/paper_claims.yaml)."""
+    paper = paper or {}
     rows = []
     for th, sub in table.groupby("threshold"):
         root = fit_c(sub, "f_d_root")
         grid = fit_c(sub, "f_d_grid")
-        from ..model.secondorder import c0_limit
-
         rows.append({
             "threshold": th, "c_root": root["c"], "c_root_stderr": root["c_stderr"],
             "c_grid": grid["c"], "c_grid_stderr": grid["c_stderr"],

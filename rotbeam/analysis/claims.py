@@ -58,6 +58,18 @@ def load_claims(data: dict[str, Any]) -> tuple[dict[str, dict], pd.DataFrame]:
     return dict(data.get("inputs") or {}), pd.DataFrame(rows)
 
 
+def printed_per_threshold(claims: pd.DataFrame, prefix: str) -> dict[float, float]:
+    """Printed values whose id is `prefix` + a threshold ("c_0.10", "c0_0.02") by threshold."""
+    out = {}
+    for cid, value in zip(claims["id"], claims["paper"], strict=True):
+        rest = str(cid)[len(prefix) :] if str(cid).startswith(prefix) else ""
+        try:
+            out[round(float(rest), 4)] = float(value)
+        except ValueError:
+            continue
+    return out
+
+
 def agrees(value: float, paper: float, tolerance: float, kind: str) -> bool:
     """Whether `value` reproduces the printed `paper` value under `kind` (NaN never does)."""
     if value is None or not math.isfinite(value):

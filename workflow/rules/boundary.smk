@@ -24,6 +24,7 @@ rule c_per_threshold:
     input:
         ref="results/boundary/ref.csv",
         beams=expand("results/boundary/{beam}.csv", beam=sorted(FIG7_BEAMS)),
+        claims=PAPER_CLAIMS,
     output:
         csv="results/tables/c_per_threshold.csv",
         md=report(

@@ -1,27 +1,9 @@
 # Why the paper's c is larger than ours: candidate mechanisms, each run through our model, and
 # the paper's first-grid-point rule on coarse scans (docs/c_hypotheses.md).  Its own simulations
 # (a few lines at C_max of config c_hypotheses); consumed by the reproduction's claims table.
-C_HYPOTHESES_CODE = [
-    str(PKG / f)
-    for f in (
-        "analysis/c_hypotheses.py",
-        "analysis/c_response.py",
-        "model/elastica_printed.py",
-        "solve/periodic_printed.py",
-        "report/c_hypotheses.py",
-        "report/style.py",
-        "model/elastica.py",
-        "model/quasistatic.py",
-        "model/criterion.py",
-        "solve/periodic.py",
-        "solve/steady.py",
-    )
-]
 
 
 rule c_hypotheses:
-    input:
-        code=C_HYPOTHESES_CODE,
     output:
         csv="results/reproduction/c_hypotheses.csv",
         md="results/reproduction/c_hypotheses.md",
@@ -38,6 +20,7 @@ rule c_hypotheses:
     conda:
         "../envs/rotbeam.yaml"
     params:
+        code=code_version("c_hypotheses"),
         study=config["c_hypotheses"],
         beam=config["beam"],
         amplitude=config["amplitude"],

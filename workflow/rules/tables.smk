@@ -2,6 +2,8 @@
 
 
 rule table1:
+    input:
+        claims=PAPER_CLAIMS,
     output:
         csv="results/tables/table1.csv",
         md=report(
@@ -44,6 +46,8 @@ rule systems_table:
 
 
 rule c0_table:
+    input:
+        claims=PAPER_CLAIMS,
     output:
         csv="results/tables/c0_threshold.csv",
         md=report(

@@ -4,6 +4,8 @@
 # (`snakemake` is injected by Snakemake)
 import pandas as pd
 
+from rotbeam.analysis.claims import load_claims, printed_per_threshold
+from rotbeam.config.scenefile import load_yaml
 from rotbeam.model.params import Beam
 from rotbeam.model.secondorder import c0_limit, c0_root
 from rotbeam.report.io import write_table
@@ -11,7 +13,8 @@ from rotbeam.report.joblog import job_log
 
 with job_log(snakemake.log[0], snakemake.input, snakemake.output, snakemake.rule):
     zeta = Beam(**snakemake.params.beam).zeta
-    printed = {0.02: 0.1414, 0.04: 0.2000, 0.06: 0.2449, 0.08: 0.2828, 0.10: 0.3162}
+    _, claims = load_claims(load_yaml(open(snakemake.input.claims).read()))
+    printed = printed_per_threshold(claims, "c0_")
     rows = [
         {"threshold": t, "c0_zeta0": c0_limit(t), "c0_paper": printed.get(round(t, 4)),
          "c0_at_beam_zeta": c0_root(zeta, t), "beam_zeta": zeta}

@@ -7,10 +7,11 @@ from rotbeam.analysis.c_hypotheses import study_from_config
 from rotbeam.model.params import Beam
 from rotbeam.report.c_hypotheses import c_hypotheses_figure, c_hypotheses_markdown
 from rotbeam.report.io import write_csv, write_text
+from rotbeam.report.joblog import job_log
 
-with open(snakemake.log[0], "w") as log:
+with job_log(snakemake.log[0], snakemake.input, snakemake.output, snakemake.rule) as log:
     study = study_from_config(snakemake.params.study, snakemake.params.amplitude)
-    table = study.run(Beam(**snakemake.params.beam), lambda m: print(m, file=log, flush=True))
+    table = study.run(Beam(**snakemake.params.beam), log.info)
     write_csv(table, snakemake.output.csv)
     write_text(c_hypotheses_markdown(table, study.describe()), snakemake.output.md)
     c_hypotheses_figure(table, snakemake.output.pdf, snakemake.output.png)
