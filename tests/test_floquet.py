@@ -60,14 +60,18 @@ def test_parametrically_modulated_beam_keeps_mass_proportional_decay():
     )
 
 
+@pytest.mark.slow
 def test_monodromy_against_finite_differences_of_the_period_map():
-    """Full nonlinear model, resonant drive: columns of Phi against central differences of the
-    time-stepped one-period map (Radau at rtol 1e-11)."""
-    N = 8
-    dl = Dimensionless.from_physical(Beam(), Drive(omega0=5.0, f_d=7.0), Effects())
+    """Full nonlinear model below resonance (5 rad/s, 4 Hz, max |theta| 0.15): Phi at the default
+    2 M steps against central differences of the time-stepped one-period map (Radau, rtol 1e-8,
+    eps 1e-4).  Measured: 1.4e-4 of max |Phi| (the differences' own floor is 4e-5) and |mu|max
+    to 7e-7.  N = 4 keeps the 12 perturbed runs affordable: a perturbation excites the
+    high-frequency modes, which mass-proportional damping leaves as undamped as the first."""
+    N = 4
+    dl = Dimensionless.from_physical(Beam(), Drive(omega0=5.0, f_d=4.0), Effects())
     model = DiscreteElastica(N, dl.hub_ratio, dl.eta, dl.effects)
-    res = solve_periodic_adaptive(dl, N, tail_tol=1e-5)
-    assert res.converged and res.harmonic_tail < 1e-5
+    res = solve_periodic_adaptive(dl, N, tail_tol=1e-6)
+    assert res.converged and res.harmonic_tail < 1e-6
     fl = beam_floquet(model, dl, res.theta, res.theta_t)
     n = model.n
 
@@ -79,19 +83,19 @@ def test_monodromy_against_finite_differences_of_the_period_map():
         return model.first_order_jacobian(z[:n], z[n:], dl.lam(t), dl.lam_dot(t))
 
     def period_map(z0):
-        sol = solve_ivp(rhs, (0.0, dl.period), z0, method="Radau", rtol=1e-11, atol=1e-13,
+        sol = solve_ivp(rhs, (0.0, dl.period), z0, method="Radau", rtol=1e-8, atol=1e-11,
                         jac=jac)  # fmt: skip
         return sol.y[:, -1]
 
     z0 = np.concatenate([res.theta[:, 0], res.theta_t[:, 0]])
-    eps = 1e-6
+    eps = 1e-4
     fd = np.column_stack(
         [(period_map(z0 + eps * e) - period_map(z0 - eps * e)) / (2 * eps) for e in np.eye(2 * n)]
     )
     rel = np.max(np.abs(fl.monodromy - fd)) / np.max(np.abs(fd))
     assert rel < 1e-3
     mu_fd = np.linalg.eigvals(fd)
-    assert abs(fl.max_abs - np.max(np.abs(mu_fd))) < 1e-4
+    assert abs(fl.max_abs - np.max(np.abs(mu_fd))) < 1e-5
 
 
 # --- Duffing oscillator x'' + c x' + k x + b x^3 = F cos(w t) -----------------------------------
@@ -163,6 +167,7 @@ def test_unstable_duffing_orbit_is_attracted_away_from():
     assert abs(abs(sol.y[0, -1]) - abs(Z[0, 0])) > 0.05 * amp_middle  # not the middle orbit
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("integrate", [False, True])
 def test_beam_unstable_orbit_not_reported_as_steady(monkeypatch, integrate):
     """Force the beam's collocated orbit to count as unstable: it is not the steady state

@@ -27,6 +27,7 @@ def _lorenz_jac(t, z):
     return np.array([[-SIGMA, SIGMA, 0.0], [RHO - z[2], -1.0, -z[0]], [z[1], z[0], -BETA]])
 
 
+@pytest.mark.slow
 def test_lorenz_largest_lyapunov_exponent():
     """0.9056 within 0.03 after 500 time units (finite-time estimates fluctuate by ~0.015 here:
     the reported spread), and the spread says so."""
@@ -51,6 +52,7 @@ def _duffing(g):
     return f, jac
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(
     "g, expected",
     [(0.20, ("periodic", 1)), (0.28, ("subharmonic", 2)), (0.29, ("subharmonic", 4)),
@@ -66,6 +68,7 @@ def test_duffing_period_doubling_route_classified(g, expected):
         assert ly.exponent - ly.spread > 0.05
 
 
+@pytest.mark.slow
 def test_duffing_first_period_doubling_on_the_period_one_branch():
     """Continuation of the period-1 orbit in g finds a multiplier through -1 between the
     period-1 (0.20) and period-2 (0.28) responses, and stable/unstable flips there."""
