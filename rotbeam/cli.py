@@ -400,7 +400,7 @@ def _calibration_parsers(sub: Any) -> None:
     i.add_argument("--fit", default="E,gamma", help="comma list of beam fields to fit "
                    "(L, h, b, E, rho, R, gamma; default E,gamma)")  # fmt: skip
     i.add_argument("--scene", help="YAML scene file: the beam to start from, effects, numerics")
-    i.add_argument("--N", type=_int, help="grid intervals of the fit (default 20 + Richardson)")
+    i.add_argument("--N", type=_int, help="grid intervals of the fit (default 20)")
     i.add_argument("--json", action="store_true", help="print one JSON object")
     i.add_argument("--plot", help="draw data, fitted and scene-beam curves (.png, .pdf, .svg)")
 
