@@ -245,7 +245,7 @@ def test_fd_star_interval_against_brute_force():
     """f_d* at Omega_0 = 5 rad/s (N = 10) with gamma = 0.039 +- 0.008 and E = 1.22 +- 0.05 MPa:
     the linearised and the Sobol-32 sd against 64 plain runs at pseudo-random normal inputs."""
     from rotbeam.analysis.verdict import critical_frequency
-    from rotbeam.solve.steady import Numerics
+    from rotbeam.solve.numerics import Numerics
 
     spread = "gamma=0.039+-0.008,E=1.22e6+-0.05e6"
     out = {}
