@@ -1,5 +1,7 @@
 """Command line: `rotbeam simulate` (one scene, with the verdict), `rotbeam critical` (f_d* at one
-speed), `rotbeam modes` (linearised frequencies) and `rotbeam bench` (work-precision benchmark).
+speed), `rotbeam modes` (linearised frequencies), `rotbeam bench` (work-precision benchmark),
+`rotbeam damping` (gamma from a ring-down) and `rotbeam identify` (E, gamma from a resonance
+curve); `--uncertainty` carries the inputs' spread into simulate's and critical's answers.
 
 Bad input gives one line on stderr and exit status 2, never a traceback.
 """
@@ -80,6 +82,10 @@ def build_parser() -> argparse.ArgumentParser:
     c.add_argument("--ftol", type=_finite, default=1e-3,
                    help="relative tolerance on f_d*, in [1e-8, 0.1] (default 1e-3)")  # fmt: skip
 
+    _uncertainty_flags(s)
+    _uncertainty_flags(c)
+    _calibration_parsers(sub)
+
     b = sub.add_parser("bench", help="work-precision benchmark (error against wall time)")
     b.add_argument("--quick", action="store_true", help="the small plan (2 scenes, 2 tolerances)")
     b.add_argument("--config", help="YAML mapping of BenchPlan fields (see rotbeam/bench/plan.py)")
@@ -119,11 +125,11 @@ def _scene_flags(p: argparse.ArgumentParser, drive_frequency: bool) -> None:
 
 
 def _scene_from_args(args: argparse.Namespace):
-    from .config.scenefile import load_scene_file, scene_sections
+    from .config.scenefile import scene_sections
     from .model.params import Effects
     from .simulate.scene import build_scene
 
-    spec = scene_sections(load_scene_file(args.scene) if args.scene else {})
+    spec = scene_sections(_scene_file_sections(args.scene))
     flags = {}  # scene key -> the flag that set it, named in an error about that key
     for section, key, value, flag in (
         ("drive", "omega0", args.omega0, "--omega0"),
@@ -195,6 +201,7 @@ def cmd_simulate(args: argparse.Namespace) -> int:
     from .simulate.scene import simulate
 
     scene = _scene_from_args(args)
+    inputs, scene = _uncertainty_inputs(args, scene)
     if args.out and Path(args.out).suffix not in (".csv", ".parquet"):
         raise RotbeamInputError(f"--out must end in .csv or .parquet, got {args.out!r}")
     if args.plot:
@@ -213,6 +220,9 @@ def cmd_simulate(args: argparse.Namespace) -> int:
         print(file=sys.stderr)
     verdict = judge(res, args.threshold)
     summary = res.summary() | verdict.as_dict() | _response(res, args)
+    prop = _simulate_uncertainty(args, scene, res, inputs) if inputs else None
+    if prop is not None:
+        summary["uncertainty"] = prop.as_dict()
     if args.out:
         _write_series(args.out, res.time_series())
     if args.plot and summary.get("_response") is not None:
@@ -231,6 +241,8 @@ def cmd_simulate(args: argparse.Namespace) -> int:
         print(f"{'converged':16s} {summary['converged']} ({summary['message']})")
         print(f"{'verdict':16s} {verdict.text}")
         print(f"{'seconds':16s} {summary['seconds']:.3g}")
+        if prop is not None:
+            _print_uncertainty(prop)
     return 0 if res.converged else 1
 
 
@@ -258,10 +270,14 @@ def cmd_critical(args: argparse.Namespace) -> int:
         1.0  # a placeholder the scene needs (a scene file's f_d is ignored): the search sets f_d
     )
     scene = _scene_from_args(args)
+    inputs, scene = _uncertainty_inputs(args, scene)
     res = critical_frequency(scene.beam, scene.drive.omega0, args.threshold, scene.drive.amplitude,
                              scene.effects, scene.numerics, args.ftol)  # fmt: skip
     out = res.as_dict() | {"omega0": scene.drive.omega0, "amplitude": scene.drive.amplitude,
                            "N": scene.numerics.N}  # fmt: skip
+    prop = _critical_uncertainty(args, scene, res, inputs) if inputs else None
+    if prop is not None:
+        out["uncertainty"] = prop.as_dict()
     if args.json:
         print(json.dumps(out, default=float))
     else:
@@ -272,6 +288,8 @@ def cmd_critical(args: argparse.Namespace) -> int:
         print(f"{'found':16s} {res.found} ({res.message})")
         print(f"{'evaluations':16s} {len(res.visited)}")
         print(f"{'seconds':16s} {res.seconds:.3g}")
+        if prop is not None:
+            _print_uncertainty(prop)
     return 0 if res.found else 1
 
 
@@ -347,6 +365,224 @@ def cmd_bench(args: argparse.Namespace) -> int:
     return 0
 
 
+# --- calibration from measurements, and uncertainty (rotbeam damping, identify; --uncertainty) ---
+
+#: Exit status of a fit that ran but cannot be trusted (the message says why).
+EXIT_REJECTED = 1
+
+
+class FitRejected(Exception):
+    """A calibration fit the data do not support (one line, exit EXIT_REJECTED)."""
+
+
+def _uncertainty_flags(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--uncertainty", help="inputs' normal spreads, e.g. "
+                   "\"gamma=0.039+-0.008,E=1.22e6+-0.05e6\" (beam fields, omega0, amplitude; "
+                   "adds to a scene file's uncertainty section)")  # fmt: skip
+    p.add_argument("--uq-method", default="linear", help="linear (1 + k runs, default) or "
+                   "sobol (--uq-samples runs at a Sobol design)")  # fmt: skip
+    p.add_argument("--uq-samples", type=_int, default=32, help="Sobol runs, a power of two "
+                   "(default 32)")  # fmt: skip
+
+
+def _calibration_parsers(sub: Any) -> None:
+    d = sub.add_parser("damping", help="gamma from a ring-down (columns t [s], y): fit of a "
+                       "damped oscillation, gamma = 2 rho A / t_decay")  # fmt: skip
+    d.add_argument("file", help="CSV with columns t and y")
+    d.add_argument("--scene", help="YAML scene file whose beam section gives rho A")
+    d.add_argument("--json", action="store_true", help="print one JSON object")
+    d.add_argument("--plot", help="draw the record and the fit to this .png, .pdf or .svg")
+    i = sub.add_parser("identify", help="beam parameters (default E, gamma) from a measured "
+                       "resonance curve (columns f_d [Hz], rms[, rms_std])")  # fmt: skip
+    i.add_argument("--measured", required=True, help="CSV with columns f_d, rms[, rms_std]")
+    i.add_argument("--omega0", type=_finite, required=True, help="Omega_0 of the measurement")
+    i.add_argument("--amplitude", type=_finite, help="velocity amplitude a [rad/s] (default 1)")
+    i.add_argument("--fit", default="E,gamma", help="comma list of beam fields to fit "
+                   "(L, h, b, E, rho, R, gamma; default E,gamma)")  # fmt: skip
+    i.add_argument("--scene", help="YAML scene file: the beam to start from, effects, numerics")
+    i.add_argument("--N", type=_int, help="grid intervals of the fit (default 20)")
+    i.add_argument("--json", action="store_true", help="print one JSON object")
+    i.add_argument("--plot", help="draw data, fitted and scene-beam curves (.png, .pdf, .svg)")
+
+
+def _scene_file_sections(path: str | None) -> dict[str, Any]:
+    """A scene file's sections without its `uncertainty` section (read by _uncertainty_inputs)."""
+    from .config.scenefile import load_scene_file
+
+    raw = dict(load_scene_file(path)) if path else {}
+    raw.pop("uncertainty", None)
+    return raw
+
+
+def _uncertainty_inputs(args: argparse.Namespace, scene):
+    """{name: (mean, sd)} from the scene file's section and --uncertainty (which wins), and the
+    scene with the means set (the plain run is the run at the means)."""
+    from .analysis.uncertainty import METHODS, apply, parse_spec
+    from .config.scenefile import load_scene_file
+    from .simulate.scene import Scene
+
+    section = load_scene_file(args.scene).get("uncertainty") if args.scene else None
+    if section is not None and not isinstance(section, dict):
+        raise RotbeamInputError(
+            f"scene file {args.scene!r}: uncertainty must be a mapping, e.g. "
+            f'uncertainty: {{gamma: "0.039 +- 0.008"}}'
+        )
+    inputs = parse_spec(section) | parse_spec(args.uncertainty)
+    if args.uq_method not in METHODS:
+        raise RotbeamInputError(f"argument --uq-method: {args.uq_method!r}; allowed: "
+                                f"{', '.join(METHODS)}")  # fmt: skip
+    if not inputs:
+        return {}, scene
+    beam, drive = apply(scene.beam, scene.drive, {k: m for k, (m, _) in inputs.items()})
+    return inputs, Scene(beam, drive, scene.effects, scene.numerics)
+
+
+def _simulate_uncertainty(args: argparse.Namespace, scene, plain, inputs):
+    """RMS, Delta RMS and P(quasi-static) over the inputs' spread (the plain run reused)."""
+    from .analysis.uncertainty import apply, propagate
+    from .simulate.scene import Scene, simulate
+
+    orbit = plain.dynamic.periodic
+    guess = orbit.theta.T if orbit is not None and orbit.converged else None
+
+    def run(values: dict[str, float]) -> dict[str, float]:
+        beam, drive = apply(scene.beam, scene.drive, values)
+        res = plain if (beam, drive) == (scene.beam, scene.drive) else simulate(
+            Scene(beam, drive, scene.effects, scene.numerics), guess=guess)  # fmt: skip
+        ok = res.converged
+        return {k: (getattr(res, k) if ok else float("nan"))
+                for k in ("rms_dynamic", "rms_quasistatic", "delta_rms")}  # fmt: skip
+
+    return propagate(inputs, run, args.uq_method, args.uq_samples, args.threshold)
+
+
+def _critical_uncertainty(args: argparse.Namespace, scene, plain, inputs):
+    """f_d* and c = f_d*/f_0 over the inputs' spread (the plain search reused)."""
+    from .analysis.uncertainty import apply, propagate
+    from .analysis.verdict import critical_frequency
+
+    def run(values: dict[str, float]) -> dict[str, float]:
+        beam, drive = apply(scene.beam, scene.drive, values)
+        res = plain if (beam, drive) == (scene.beam, scene.drive) else critical_frequency(
+            beam, drive.omega0, args.threshold, drive.amplitude, scene.effects, scene.numerics,
+            args.ftol)  # fmt: skip
+        return {"f_d_star": res.f_d_star, "c": res.f_d_star / res.f0_hz, "f0_hz": res.f0_hz}
+
+    return propagate(inputs, run, args.uq_method, args.uq_samples, None)
+
+
+def _print_uncertainty(prop) -> None:
+    spread = ", ".join(f"{k} = {m:g} +- {s:g}" for k, (m, s) in prop.inputs.items())
+    print(f"{'uncertainty':16s} {spread} (normal; {prop.method}, {prop.runs} runs, "
+          f"{prop.seconds:.3g} s{f', {prop.failed} failed' if prop.failed else ''})")  # fmt: skip
+    for k in prop.mean:
+        print(f"{'  ' + k:16s} {prop.mean[k]:.6g} +- {prop.sd[k]:.3g}  "
+              f"95 %: [{prop.low[k]:.6g}, {prop.high[k]:.6g}]")  # fmt: skip
+    if prop.p_quasistatic is not None:
+        print(f"{'  verdict':16s} quasi-static with probability {prop.p_quasistatic:.3g}")
+
+
+def _check_plot_flag(path: str | None) -> None:
+    from .report.verdict_plot import check_plot_path
+
+    if path:
+        check_plot_path(path)
+
+
+def _beam_from_scene(path: str | None):
+    from .config.scenefile import scene_sections
+    from .simulate.scene import build_scene
+
+    return build_scene(scene_sections(_scene_file_sections(path)))
+
+
+def cmd_damping(args: argparse.Namespace) -> int:
+    from .analysis.measurements import load_ringdown
+    from .analysis.ringdown import RingdownRejected, fit_ringdown
+
+    _check_plot_flag(args.plot)
+    beam = _beam_from_scene(args.scene).beam
+    data = load_ringdown(args.file)
+    try:
+        fit = fit_ringdown(data, beam)
+    except RingdownRejected as exc:
+        raise FitRejected(f"{args.file}: {exc}") from None
+    if args.plot:
+        from .report.calibration_plots import plot_ringdown
+
+        plot_ringdown(data, fit, args.plot)
+    out = fit.as_dict()
+    if args.json:
+        print(json.dumps(out, default=float))
+    else:
+        for k in ("f_hz", "t_decay", "gamma", "amplitude", "offset"):
+            print(f"{k:16s} {out[k]:.6g} +- {out[k + '_stderr']:.2g}")
+        print(f"{'zeta':16s} {fit.zeta:.4g}")
+        print(f"{'rhoA':16s} {fit.rhoA:.6g} kg/m (beam of the scene)")
+        print(f"{'snr':16s} {fit.snr:.3g} ({fit.cycles:.3g} cycles, {fit.points} samples)")
+    return 0
+
+
+def cmd_identify(args: argparse.Namespace) -> int:
+    from dataclasses import replace
+
+    from .analysis.identify import FIT_NUMERICS, IdentifyFailed, identify, parse_names
+    from .analysis.measurements import load_resonance
+
+    _check_plot_flag(args.plot)
+    names = parse_names(args.fit)
+    scene = _beam_from_scene(args.scene)
+    numerics = FIT_NUMERICS
+    if args.scene and "numerics" in _scene_file_sections(args.scene):
+        numerics = scene.numerics
+    if args.N is not None:
+        try:
+            numerics = replace(numerics, N=args.N)
+        except RotbeamInputError as exc:
+            raise RotbeamInputError(f"argument --N: {exc}") from None
+    amplitude = scene.drive.amplitude if args.amplitude is None else args.amplitude
+    if args.amplitude is not None and not args.amplitude > 0:
+        raise RotbeamInputError(f"argument --amplitude: must be > 0, got {args.amplitude!r}")
+    curve = load_resonance(args.measured, len(names))
+    try:
+        res = identify(curve, args.omega0, amplitude, names, scene.beam, scene.effects, numerics)
+    except IdentifyFailed as exc:
+        raise FitRejected(str(exc)) from None
+    out = res.as_dict() | {"omega0": args.omega0, "amplitude": amplitude, "N": numerics.N,
+                           "extrapolate": numerics.extrapolate}  # fmt: skip
+    if args.plot:
+        _plot_identify(args, curve, res, scene, amplitude, numerics)
+    if args.json:
+        print(json.dumps(out, default=float))
+    else:
+        for n in names:
+            print(f"{n:16s} {res.values[n]:.6g} +- {res.stderr[n]:.2g}  95 %: "
+                  f"[{res.low[n]:.6g}, {res.high[n]:.6g}]  (start {res.start[n]:.4g})")  # fmt: skip
+        print(f"{'residual':16s} RSS {res.rss:.3g}, {res.dof} dof, scale {res.scale:.3g}")
+        print(f"{'evaluations':16s} {res.evaluations} ({res.runs} steady states, N = "
+              f"{numerics.N}{' + Richardson' if numerics.extrapolate else ''})")  # fmt: skip
+        print(f"{'seconds':16s} {res.seconds:.3g}")
+        print(f"{'converged':16s} {res.success} ({res.message})")
+    return 0 if res.success else 1
+
+
+def _plot_identify(args, curve, res, scene, amplitude, numerics) -> None:
+    from .model.params import Beam
+    from .report.calibration_plots import plot_identification
+    from .simulate.sweeps import scan_line
+
+    lo, hi = float(curve.f_d[0]), float(curve.f_d[-1])
+    grid = np.linspace(lo - 0.05 * (hi - lo), hi + 0.05 * (hi - lo), 41)
+    fitted = scan_line(res.beam, args.omega0, grid, amplitude, scene.effects, numerics)
+    ref = scan_line(scene.beam, args.omega0, grid, amplitude, scene.effects, numerics)
+    label = "Table 1 beam" if scene.beam == Beam() else "scene beam"
+    label += f" (E = {scene.beam.E:.4g} Pa, gamma = {scene.beam.gamma:.4g})"
+    plot_identification(curve, res, fitted, ref, label, args.plot)
+
+
+CALIBRATION_COMMANDS = {"damping": cmd_damping, "identify": cmd_identify}
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = build_parser()
     args = parser.parse_args(argv)
@@ -357,10 +593,15 @@ def main(argv: list[str] | None = None) -> int:
             return cmd_bench(args)
         if args.command == "critical":
             return cmd_critical(args)
+        if args.command in CALIBRATION_COMMANDS:
+            return CALIBRATION_COMMANDS[args.command](args)
         return cmd_modes(args)
     except RotbeamInputError as exc:
         print(f"rotbeam: error: {exc}", file=sys.stderr)
         return EXIT_USAGE
+    except FitRejected as exc:
+        print(f"rotbeam: fit rejected: {exc}", file=sys.stderr)
+        return EXIT_REJECTED
     except KeyboardInterrupt:
         print("rotbeam: interrupted", file=sys.stderr)
         return 130

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
+from pathlib import Path
 
 import matplotlib
 import numpy as np
@@ -56,8 +57,11 @@ def fig2_shapes(shapes: pd.DataFrame, pdf: str, png: str) -> None:
     save(fig, pdf, png)
 
 
-def fig3_resonance(line: pd.DataFrame, series: pd.DataFrame, pdf: str, png: str) -> None:
-    """Fig. 3: resonance curve RMS(y_m) vs f_d, y_m(tau) at one f_d, its power spectrum."""
+def fig3_resonance(
+    line: pd.DataFrame, series: pd.DataFrame, pdf: str, png: str, measured=None
+) -> None:
+    """Fig. 3: resonance curve RMS(y_m) vs f_d, y_m(tau) at one f_d, its power spectrum;
+    `measured` (a ResonanceCurve) is drawn over panel (a) when given."""
     fig, axes = figure(1, 3, width=11.0, height=3.6)
     a, b, c = axes
     ok = line["converged"].astype(bool)
@@ -65,6 +69,8 @@ def fig3_resonance(line: pd.DataFrame, series: pd.DataFrame, pdf: str, png: str)
     a.plot(line["f_d"], line["rms_quasistatic"], "*--", color=QS, label="quasi-static")
     if (~ok).any():
         a.plot(line.loc[~ok, "f_d"], line.loc[~ok, "rms_dynamic"], "x", color="r", label="failed")
+    if measured is not None:
+        _draw_measured(a, measured.f_d, measured)
     a.set_xlabel("$f_d$ [Hz]")
     a.set_ylabel("RMS($y_m$)")
     a.set_title(rf"$\Omega_0$ = {line['omega0'].iloc[0]:g} rad/s")
@@ -89,10 +95,24 @@ def fig3_resonance(line: pd.DataFrame, series: pd.DataFrame, pdf: str, png: str)
     save(fig, pdf, png)
 
 
+def _draw_measured(ax, x, curve) -> None:
+    """A measured resonance curve (with its rms_std bars if given) on an RMS axis."""
+    name = Path(curve.source).name if curve.source else "measured"
+    ax.errorbar(x, curve.rms, yerr=curve.rms_std, fmt="s", color="k", ms=4, mfc="none",
+                capsize=2, label=f"measured ({name})")  # fmt: skip
+
+
 def fig4_compare(
-    lines: Sequence[pd.DataFrame], crit: pd.DataFrame, threshold: float, pdf: str, png: str
+    lines: Sequence[pd.DataFrame],
+    crit: pd.DataFrame,
+    threshold: float,
+    pdf: str,
+    png: str,
+    measured: dict | None = None,
 ) -> None:
-    """Fig. 4: RMS dyn/QS and Delta RMS vs f_d/f_n at two Omega_0, f_d* and f_0 marked."""
+    """Fig. 4: RMS dyn/QS and Delta RMS vs f_d/f_n at two Omega_0, f_d* and f_0 marked;
+    `measured` maps an Omega_0 to a ResonanceCurve drawn over that column's RMS panel."""
+    measured = measured or {}
     fig, axes = figure(2, len(lines), width=4.2 * len(lines), height=6.0, squeeze=False)
     for j, line in enumerate(lines):
         w0 = float(line["omega0"].iloc[0])
@@ -117,6 +137,9 @@ def fig4_compare(
                 ax.axvline(fs, color=ACCENT, ls=":", lw=1.5, label=r"$f_d^\star/f_n$")
                 ax.axvspan(0, fs, color=ACCENT, alpha=0.08)
         a.plot([peak], [np.nanmax(line["rms_dynamic"])], "v", color="k", label="peak of scan")
+        for w, curve in measured.items():
+            if np.isclose(float(w), w0):
+                _draw_measured(a, curve.f_d / fn, curve)
         if not row.empty and np.isfinite(row["f_d_grid"].iloc[0]):
             g = float(row["f_d_grid"].iloc[0])
             gd = line.loc[np.isclose(line["f_d"], g), "delta_rms"]

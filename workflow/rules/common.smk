@@ -80,6 +80,12 @@ def check_code_versions(rules):
             )
 
 
+# Measured curves to draw over Figs. 3 and 4 (config "measurements"; none by default).
+MEASUREMENTS = config.get("measurements") or {}
+MEASURED_FIG3 = [MEASUREMENTS["fig3"]] if MEASUREMENTS.get("fig3") else []
+MEASURED_FIG4 = {k: v for k, v in (MEASUREMENTS.get("fig4") or {}).items() if v}
+
+
 def line_spec(wildcards):
     return LINES[(wildcards.beam, wildcards.line)]
 

@@ -49,6 +49,7 @@ rule fig3:
     input:
         line="results/sims/ref/fig3.csv",
         series="results/series/fig3.csv",
+        measured=MEASURED_FIG3,
     output:
         pdf=report(
             "results/fig3/resonance.pdf",
@@ -74,6 +75,7 @@ rule fig4:
             "results/sims/ref/fig4_w{w}.csv",
             w=[format(float(w), "g") for w in config["fig4"]["omega0"]],
         ),
+        measured=list(MEASURED_FIG4.values()),
     output:
         pdf=report(
             "results/fig4/dynamic_vs_quasistatic.pdf",
@@ -92,6 +94,7 @@ rule fig4:
         code=code_version("fig4"),
         threshold=config["main_threshold"],
         beam=config["beam"],
+        measured_omega0=[float(w) for w in MEASURED_FIG4],
     script:
         "../scripts/fig4.py"
 

@@ -1,10 +1,12 @@
-"""Fig. 4: dynamic vs quasi-static RMS and Delta RMS at two mean speeds."""
+"""Fig. 4: dynamic vs quasi-static RMS and Delta RMS at two mean speeds (and measured curves,
+if configured)."""
 
 # ruff: noqa: F821
 # (`snakemake` is injected by Snakemake)
 import pandas as pd
 
 from rotbeam.analysis.boundary import boundary_table
+from rotbeam.analysis.measurements import load_resonance
 from rotbeam.report.figures import fig4_compare
 from rotbeam.report.io import write_csv
 from rotbeam.report.joblog import job_log
@@ -15,4 +17,8 @@ with job_log(snakemake.log[0], snakemake.input, snakemake.output, snakemake.rule
     crit = boundary_table(lines, [th], snakemake.params.beam)
     write_csv(crit, snakemake.output.table)
     log.info("critical frequencies:\n%s", crit.to_string())
-    fig4_compare(lines, crit, th, snakemake.output.pdf, snakemake.output.png)
+    measured = {
+        w: load_resonance(f)
+        for w, f in zip(snakemake.params.measured_omega0, snakemake.input.measured, strict=True)
+    }
+    fig4_compare(lines, crit, th, snakemake.output.pdf, snakemake.output.png, measured=measured)

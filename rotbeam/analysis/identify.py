@@ -1,0 +1,255 @@
+"""Beam parameters (E and gamma by default) from a measured resonance curve RMS(y_m)(f_d).
+
+Least squares with the full model: every residual evaluation runs one periodic steady state per
+measured f_d (`rotbeam.simulate.scene.simulate`), each seeded with the orbit of the previous
+evaluation at the same f_d, and evaluations are cached by parameter values (the Jacobian's base
+point is the last residual's).  The fitted parameters are u = log(X / X_start) (positivity, and
+relative steps); the Jacobian is a forward difference of STEP in u.
+
+Uncertainty: cov_u = s^2 (J^T J)^-1 at the optimum, s^2 = RSS / (n - p) when the file gives no
+rms_std (residuals unweighted), else residuals divided by rms_std and s^2 = max(1, chi^2 / (n -
+p)) (the stated errors, inflated when the scatter exceeds them).  The 95 % interval is
+exp(u +- q se_u) X_start, q the Student t quantile with n - p degrees of freedom; X_stderr = X
+se_u (delta method).
+
+A trial point whose runs reach no steady state (a lightly damped resonance can be out of the
+collocation's reach) gets large residuals, so the trust region retreats from it.
+
+Start: E from the data's peak (the model's linear f_0 at Omega_0 + a made equal to the f_d of
+the largest RMS, parabola through the top three points), then gamma from the ratio of the
+model's largest RMS to the data's (a resonant peak scales as 1 / damping).  Other parameters
+start at the scene's values.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import asdict, dataclass, field, replace
+
+import numpy as np
+from scipy.optimize import least_squares
+from scipy.stats import t as student_t
+
+from ..config.errors import RotbeamInputError
+from ..model.params import Beam, Drive, Effects
+from ..simulate.scene import Scene, simulate
+from ..simulate.sweeps import resonance_frequency_hz
+from ..solve.numerics import Numerics
+from .measurements import ResonanceCurve
+
+FITTABLE = ("L", "h", "b", "E", "rho", "R", "gamma")
+STEP = 0.01  #: forward-difference step in log(X): 1 %
+BOUND = 3.0  #: |log(X / X_start)| <= BOUND (a factor e^3 = 20 either way)
+#: Default numerics of the fit: N = 20, no Richardson (N = 10 fails near a lightly damped
+#: resonance), and a budget in periods rather than wall time, so that a run that finds no steady
+#: state fails after the same work on any machine (README "Calibration" gives the accuracy cost).
+FIT_NUMERICS = Numerics(N=20, max_periods=100)
+#: A trial point whose runs find no steady state gets residuals of this size (times the data's
+#: largest value): the trust region shrinks back towards the last good point.
+PENALTY = 10.0
+
+
+class IdentifyFailed(Exception):
+    """The fit could not be carried out (a model run without steady state, a beam out of
+    range); the message says where."""
+
+
+def parse_names(text: str) -> tuple[str, ...]:
+    """'E,gamma' -> ('E', 'gamma'), each a Beam field, no repeats."""
+    names = tuple(n.strip() for n in text.split(",") if n.strip())
+    bad = [n for n in names if n not in FITTABLE]
+    if not names or bad:
+        raise RotbeamInputError(
+            f"--fit {text!r}: {'unknown ' + ', '.join(bad) if bad else 'names nothing'}; "
+            f"allowed: comma list of {', '.join(FITTABLE)}"
+        )
+    if len(set(names)) != len(names):
+        raise RotbeamInputError(f"--fit {text!r} names a parameter twice")
+    return names
+
+
+@dataclass
+class ResonanceModel:
+    """RMS(y_m) at fixed drive frequencies for a beam; orbits reused, results cached."""
+
+    f_d: np.ndarray
+    omega0: float
+    amplitude: float = 1.0
+    effects: Effects = field(default_factory=Effects)
+    numerics: Numerics = FIT_NUMERICS
+    runs: int = 0
+    evaluations: int = 0
+    _guess: list = field(default_factory=list)
+    _cache: dict = field(default_factory=dict)
+
+    def __call__(self, beam: Beam) -> np.ndarray:
+        key = tuple(asdict(beam).values())
+        if key in self._cache:
+            return self._cache[key]
+        if not self._guess:
+            self._guess = [None] * len(self.f_d)
+        out = np.empty(len(self.f_d))
+        self.evaluations += 1
+        for k, f in enumerate(self.f_d):
+            scene = Scene(beam, Drive(self.omega0, self.amplitude, float(f)), self.effects,
+                          self.numerics)  # fmt: skip
+            res = simulate(scene, guess=self._guess[k])
+            self.runs += 1
+            if not res.converged or not math.isfinite(res.rms_dynamic):
+                raise IdentifyFailed(
+                    f"no steady state at f_d = {f:.4g} Hz for {_describe(beam)}: "
+                    f"{res.dynamic.message}"
+                )
+            orbit = res.dynamic.periodic
+            if orbit is not None and orbit.converged:
+                self._guess[k] = orbit.theta.T
+            out[k] = res.rms_dynamic
+        self._cache[key] = out
+        return out
+
+
+def _describe(beam: Beam) -> str:
+    return f"E = {beam.E:.4g} Pa, gamma = {beam.gamma:.4g} N s/m^2"
+
+
+@dataclass(frozen=True)
+class Identification:
+    names: tuple[str, ...]
+    values: dict[str, float]
+    stderr: dict[str, float]
+    low: dict[str, float]  #: 95 % interval
+    high: dict[str, float]
+    start: dict[str, float]
+    beam: Beam  #: the scene's beam with the fitted values
+    model_rms: np.ndarray  #: the fitted model at the measured f_d
+    rss: float  #: sum of squared (weighted) residuals
+    dof: int
+    scale: float  #: s^2 of the covariance (see the module docstring)
+    evaluations: int  #: residual evaluations (one model run per f_d each)
+    runs: int  #: steady states computed
+    seconds: float
+    success: bool
+    message: str
+
+    def as_dict(self) -> dict[str, object]:
+        out: dict[str, object] = {}
+        for n in self.names:
+            out[n] = self.values[n]
+            out[f"{n}_stderr"] = self.stderr[n]
+            out[f"{n}_ci95"] = [self.low[n], self.high[n]]
+            out[f"{n}_start"] = self.start[n]
+        out.update(rss=self.rss, dof=self.dof, residual_scale=self.scale,
+                   model_rms=self.model_rms.tolist(), evaluations=self.evaluations,
+                   runs=self.runs, seconds=self.seconds, success=self.success,
+                   message=self.message)  # fmt: skip
+        return out
+
+
+def _with(beam: Beam, names: tuple[str, ...], values: np.ndarray) -> Beam:
+    try:
+        return replace(beam, **{n: float(v) for n, v in zip(names, values, strict=True)})
+    except RotbeamInputError as exc:
+        raise IdentifyFailed(f"the fit left the beam's range: {exc}") from None
+
+
+def _peak_frequency(curve: ResonanceCurve) -> float:
+    f, r = curve.f_d, curve.rms
+    k = int(np.argmax(r))
+    if 0 < k < f.size - 1:
+        a, b, c = np.polyfit(f[k - 1 : k + 2], r[k - 1 : k + 2], 2)
+        if a < 0 and f[k - 1] < -b / (2 * a) < f[k + 1]:
+            return float(-b / (2 * a))
+    return float(f[k])
+
+
+def start_values(curve: ResonanceCurve, names: tuple[str, ...], beam: Beam,
+                 model: ResonanceModel) -> Beam:  # fmt: skip
+    """The fit's start (module docstring): E from the peak's f_d, then gamma from its height."""
+    if "E" in names:
+        target = _peak_frequency(curve)
+        for _ in range(6):  # f_0^2 is affine in E at fixed speed: converges in a few steps
+            f0 = resonance_frequency_hz(beam, model.omega0, model.amplitude)
+            beam = _with(beam, ("E",), np.array([beam.E * (target / f0) ** 2]))
+    if "gamma" in names and beam.gamma > 0:
+        for _ in range(3):  # a lightly damped start may find no steady state: more damping
+            try:
+                ratio = float(np.max(model(beam)) / np.max(curve.rms))
+                break
+            except IdentifyFailed:
+                beam = _with(beam, ("gamma",), np.array([beam.gamma * 1.5]))
+        else:
+            return beam
+        beam = _with(beam, ("gamma",), np.array([beam.gamma * min(max(ratio, 0.2), 5.0)]))
+    return beam
+
+
+def identify(
+    curve: ResonanceCurve,
+    omega0: float,
+    amplitude: float = 1.0,
+    names: tuple[str, ...] = ("E", "gamma"),
+    beam: Beam | None = None,
+    effects: Effects | None = None,
+    numerics: Numerics | None = None,
+) -> Identification:
+    """Least-squares fit of `names` to the measured curve (module docstring)."""
+    t0 = time.perf_counter()
+    base = beam or Beam()
+    model = ResonanceModel(curve.f_d, omega0, amplitude, effects or Effects(),
+                           numerics or FIT_NUMERICS)  # fmt: skip
+    n, p = curve.f_d.size, len(names)
+    if n <= p:
+        raise RotbeamInputError(f"{n} points cannot fit {p} parameters; need >= {p + 1}")
+    start = start_values(curve, names, base, model)
+    x0 = np.array([getattr(start, k) for k in names])
+    w = curve.rms_std if curve.rms_std is not None else np.ones(n)
+
+    failures: list[str] = []
+
+    def resid(u: np.ndarray, strict: bool = False) -> np.ndarray:
+        try:
+            return (model(_with(start, names, x0 * np.exp(u))) - curve.rms) / w
+        except IdentifyFailed as exc:
+            if strict:
+                raise
+            failures.append(str(exc))
+            return np.full(n, PENALTY * float(np.max(curve.rms))) / w
+
+    def jac(u: np.ndarray) -> np.ndarray:
+        r0 = resid(u, strict=True)
+        cols = []
+        for e in np.eye(p):  # forward, or backward where the forward point has no steady state
+            try:
+                cols.append((resid(u + STEP * e, strict=True) - r0) / STEP)
+            except IdentifyFailed:
+                cols.append((r0 - resid(u - STEP * e, strict=True)) / STEP)
+        return np.column_stack(cols)
+
+    sol = least_squares(resid, np.zeros(p), jac=jac, bounds=(-BOUND, BOUND), method="trf",
+                        xtol=1e-4, ftol=1e-8, max_nfev=40)  # fmt: skip
+    u = sol.x
+    J = jac(u)  # at the optimum (cached base point)
+    r = resid(u, strict=True)
+    rss = float(r @ r)
+    dof = n - p
+    scale = rss / dof if curve.rms_std is None else max(1.0, rss / dof)
+    try:
+        cov = scale * np.linalg.inv(J.T @ J)
+    except np.linalg.LinAlgError:
+        cov = np.full((p, p), np.inf)
+    se = np.sqrt(np.clip(np.diag(cov), 0.0, np.inf))
+    q = float(student_t.ppf(0.975, dof))
+    x = x0 * np.exp(u)
+    fitted = _with(start, names, x)
+    return Identification(
+        names=names, values=dict(zip(names, x.tolist(), strict=True)),
+        stderr={k: float(v * s) for k, v, s in zip(names, x, se, strict=True)},
+        low={k: float(v * math.exp(-q * s)) for k, v, s in zip(names, x, se, strict=True)},
+        high={k: float(v * math.exp(q * s)) for k, v, s in zip(names, x, se, strict=True)},
+        start=dict(zip(names, x0.tolist(), strict=True)), beam=fitted, model_rms=model(fitted),
+        rss=rss, dof=dof, scale=scale, evaluations=model.evaluations, runs=model.runs,
+        seconds=time.perf_counter() - t0, success=bool(sol.success),
+        message=str(sol.message) + (f"; {len(failures)} trial point(s) without steady state"
+                                    if failures else ""),
+    )  # fmt: skip

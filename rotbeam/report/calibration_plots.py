@@ -1,0 +1,70 @@
+"""Plots of the calibration commands: a ring-down with its fit, a resonance curve with the
+fitted model and the scene's (Table 1) model."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from ..analysis.identify import Identification
+from ..analysis.measurements import ResonanceCurve, Ringdown
+from ..analysis.ringdown import RingdownFit
+from .style import DYN, GREY, QS, figure, save
+
+
+def plot_ringdown(data: Ringdown, fit: RingdownFit, path: str | Path) -> None:
+    """The record, the fitted damped oscillation and its envelope; residuals below."""
+    t0 = float(data.t[0])
+    fig, (a, b) = figure(2, 1, width=7.0, height=4.8, sharex=True,
+                         gridspec_kw={"height_ratios": [3, 1]})  # fmt: skip
+    tt = np.linspace(data.t[0], data.t[-1], max(2000, 20 * data.t.size))
+    env = fit.amplitude * np.exp(-(tt - t0) / fit.t_decay)
+    a.plot(data.t, data.y, ".", ms=2.5, color=GREY, label="measured")
+    a.plot(tt, fit.curve(tt, t0), color=DYN, lw=1.0, label="fit")
+    a.plot(tt, fit.offset + env, "--", color=QS, lw=1.0, label=r"$A\,e^{-t/t_{decay}}$")
+    a.plot(tt, fit.offset - env, "--", color=QS, lw=1.0)
+    a.set_ylabel("y")
+    a.set_title(
+        f"f = {fit.f_hz:.4g} ± {fit.f_hz_stderr:.2g} Hz, t_decay = {fit.t_decay:.4g} ± "
+        f"{fit.t_decay_stderr:.2g} s\n"
+        rf"$\gamma$ = 2$\rho$A / t_decay = {fit.gamma:.4g} ± {fit.gamma_stderr:.2g} N s/m$^2$ "
+        f"(ρA = {fit.rhoA:.4g} kg/m), SNR {fit.snr:.3g}",
+        loc="left",
+        fontsize=9,
+    )
+    a.legend(fontsize=8)
+    b.plot(data.t, data.y - fit.curve(data.t, t0), ".", ms=2, color=GREY)
+    b.axhline(0.0, color="k", lw=0.6)
+    b.set_xlabel("t [s]")
+    b.set_ylabel("residual")
+    save(fig, path)
+
+
+def plot_identification(curve: ResonanceCurve, fit: Identification, fitted: pd.DataFrame,
+                        reference: pd.DataFrame, reference_label: str,
+                        path: str | Path) -> None:  # fmt: skip
+    """Data (with rms_std bars if given), the fitted model's curve, the scene beam's curve."""
+    fig, a = figure(width=7.0, height=4.6)
+    if curve.rms_std is not None:
+        a.errorbar(curve.f_d, curve.rms, yerr=curve.rms_std, fmt="o", color="k", ms=4,
+                   capsize=2, label="measured")  # fmt: skip
+    else:
+        a.plot(curve.f_d, curve.rms, "o", color="k", ms=4, label="measured")
+    text = ", ".join(
+        f"{n} = {fit.values[n]:.4g} [{fit.low[n]:.4g}, {fit.high[n]:.4g}]" for n in fit.names
+    )
+    a.plot(fitted["f_d"], fitted["rms_dynamic"], "-", color=DYN, label=f"fit: {text}")
+    a.plot(reference["f_d"], reference["rms_dynamic"], "--", color=GREY, label=reference_label)
+    a.set_xlabel("$f_d$ [Hz]")
+    a.set_ylabel("RMS($y_m$)")
+    N = int(fitted["N"].iloc[0])
+    a.set_title(
+        f"least squares on the full model (N = {N}): {fit.evaluations} evaluations, "
+        f"{fit.runs} steady states, {fit.seconds:.3g} s; 95 % intervals",
+        loc="left",
+        fontsize=9,
+    )
+    a.legend(fontsize=8)
+    save(fig, path)
