@@ -57,6 +57,12 @@ class FloquetResult:
     def stable(self) -> bool:
         return self.max_abs < 1.0 - STABLE_MARGIN
 
+    @property
+    def unstable(self) -> bool:
+        """A multiplier outside the unit circle: perturbations grow.  Neither stable nor
+        unstable is neutral (|mu|max = 1: an undamped model), which is not left or flagged."""
+        return self.max_abs > 1.0 + STABLE_MARGIN
+
     def describe(self) -> str:
         mu = self.multipliers[0] if self.multipliers.size else 0.0
         kind = "real" if abs(np.imag(mu)) <= 1e-9 * max(abs(mu), 1e-300) else "complex pair"

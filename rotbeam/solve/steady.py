@@ -153,7 +153,7 @@ def _from_collocation(
     ok = res.converged and res.harmonic_tail <= num.tail_tol and model.eta > 0.0
     msg = f"collocation M={res.M}: {res.message}, harmonic tail {res.harmonic_tail:.2g}"
     msg += stability_note(fl)
-    unstable = ok and fl is not None and not fl.stable
+    unstable = ok and fl is not None and fl.unstable
     if unstable:
         ok = False
         msg += " (not a steady state: the orbit is unstable)"
@@ -445,7 +445,7 @@ def steady_state(
     if not num.integrate and periodic is not None:
         return _from_collocation(model, dl, num, periodic, t0)
     orbit_fl = orbit_stability(model, dl, periodic)  # an unstable orbit is left, not verified
-    unstable_orbit = orbit_fl is not None and not orbit_fl.stable
+    unstable_orbit = orbit_fl is not None and orbit_fl.unstable
     from_orbit = periodic is not None and periodic.converged and not unstable_orbit
     tol = tolerances(model, dl, num, z, response_scale, periodic, from_orbit)
     if unstable_orbit:
@@ -487,10 +487,10 @@ def reported_stability(
     fl = orbit_fl if status == 0 and win.periods == 1 and from_orbit else None
     if status == 0 and fl is None:
         fl = window_stability(model, dl, win.theta[:, -num.samples_per_period :])
-        if fl is not None and not fl.stable:
+        if fl is not None and fl.unstable:
             status = STATUS_UNSTABLE
             message += "; but the orbit reached is unstable (a slow transient, not a steady state)"
-    if orbit_fl is not None and not orbit_fl.stable:
+    if orbit_fl is not None and orbit_fl.unstable:
         message = f"collocated orbit unstable ({orbit_fl.crossing()}); {message}"
     message += stability_note(fl if fl is not None else orbit_fl)
     return status, message, fl if fl is not None else orbit_fl
