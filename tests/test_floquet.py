@@ -174,7 +174,9 @@ def test_beam_unstable_orbit_not_reported_as_steady(monkeypatch, integrate):
     (integrate=False: status 2; integrate=True: time stepping decides, message says so)."""
     import rotbeam.solve.floquet as floquet
 
-    monkeypatch.setattr(floquet, "STABLE_MARGIN", 0.5)  # |mu|max ~ 0.66-0.95 now "unstable"
+    # the unit circle shrunk to radius 0.5: |mu|max ~ 0.66-0.95 now counts as unstable
+    monkeypatch.setattr(floquet.FloquetResult, "stable", property(lambda s: s.max_abs < 0.5))
+    monkeypatch.setattr(floquet.FloquetResult, "unstable", property(lambda s: s.max_abs > 0.5))
     dl = Dimensionless.from_physical(Beam(), Drive(omega0=5.0, f_d=2.0), Effects())
     res = steady_state(dl, Numerics(N=10, integrate=integrate, max_seconds=60))
     assert res.floquet is not None and not res.floquet.stable
