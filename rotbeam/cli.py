@@ -19,7 +19,7 @@ from typing import Any
 import numpy as np
 
 from .config.errors import RotbeamInputError
-from .config.parameters import help_text, param
+from .config.parameters import check_value, help_text, param
 from .model.params import BETA1, C_MAX_LIMIT, Beam
 
 EXIT_USAGE = 2
@@ -197,15 +197,14 @@ def _check_threshold_flag(value: float) -> None:
 
 def cmd_simulate(args: argparse.Namespace) -> int:
     from .analysis.verdict import judge
-    from .report.verdict_plot import check_plot_path, plot_verdict
+    from .report.verdict_plot import plot_verdict
     from .simulate.scene import simulate
 
     scene = _scene_from_args(args)
     inputs, scene = _uncertainty_inputs(args, scene)
     if args.out and Path(args.out).suffix not in (".csv", ".parquet"):
         raise RotbeamInputError(f"--out must end in .csv or .parquet, got {args.out!r}")
-    if args.plot:
-        check_plot_path(args.plot)
+    _check_plot_flag(args.plot)
     _check_threshold_flag(args.threshold)
     if args.response_periods < 1:
         raise RotbeamInputError(
@@ -305,8 +304,10 @@ def _check_rotation(flag: str, value: float, c: float, formula: str) -> None:
 def cmd_modes(args: argparse.Namespace) -> int:
     from .model.modes import dimensionless_frequencies, natural_frequencies_hz
 
-    if not 3 <= args.N <= 2000:
-        raise RotbeamInputError(f"--N must be in [3, 2000], got {args.N}")
+    try:
+        check_value("numerics", "N", args.N)
+    except RotbeamInputError as exc:
+        raise RotbeamInputError(f"argument --N: {exc}") from None
     if not 1 <= args.k < args.N:
         raise RotbeamInputError(f"--k must be in [1, N-1={args.N - 1}], got {args.k}")
     soft = not args.no_softening

@@ -46,7 +46,7 @@ from scipy.interpolate import PchipInterpolator
 
 from ..config.checks import check_positive, check_threshold
 from ..config.errors import RotbeamInputError
-from ..model.criterion import critical_from_scan
+from ..model.criterion import critical_from_scan, rms
 from ..model.modes import natural_frequencies_hz
 from ..model.params import Beam, Dimensionless, Drive, Effects, omega0_for_cmax
 from ..model.surrogate import southwell_frequency_hz
@@ -284,10 +284,9 @@ def _beam_for(beam: Beam, h: Hypothesis) -> Beam:
 
 
 def _rms(y: np.ndarray, mean: str) -> float:
+    """RMS of y (Eq. RMS), with its mean removed first when `mean` is "remove"."""
     y = np.asarray(y, float)
-    if mean == "remove":
-        y = y - y.mean()
-    return float(np.sqrt(np.mean(y * y)))
+    return rms(y - y.mean() if mean == "remove" else y)
 
 
 def scene_delta(

@@ -15,12 +15,14 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from pathlib import Path
 from typing import Any
 
 import numpy as np
 import pandas as pd
 
 from ..config.errors import RotbeamInputError
+from ..config.scenefile import load_yaml
 from ..model.criterion import power_spectrum
 from .collapse import collapse_fraction
 from .hypotheses import plateau
@@ -56,6 +58,11 @@ def load_claims(data: dict[str, Any]) -> tuple[dict[str, dict], pd.DataFrame]:
     if dup:
         raise RotbeamInputError(f"paper_claims: duplicate ids {', '.join(dup)}")
     return dict(data.get("inputs") or {}), pd.DataFrame(rows)
+
+
+def read_claims(path: str | Path) -> tuple[dict[str, dict], pd.DataFrame]:
+    """`load_claims` of the file at `path` (workflow/resources/paper_claims.yaml)."""
+    return load_claims(load_yaml(Path(path).read_text()))
 
 
 def printed_per_threshold(claims: pd.DataFrame, prefix: str) -> dict[float, float]:

@@ -16,6 +16,7 @@ from typing import Any
 import numpy as np
 
 from .errors import RotbeamInputError
+from .schema import g
 
 
 @dataclass(frozen=True)
@@ -105,10 +106,6 @@ def default(section: str, name: str) -> Any:
     return SECTIONS[section][name].default
 
 
-def _fmt(x: float) -> str:
-    return f"{x:g}"
-
-
 def allowed(p: Param) -> str:
     """What a field accepts, in words (for error messages and help)."""
     if p.kind == "bool":
@@ -123,10 +120,10 @@ def allowed(p: Param) -> str:
 def _bounds(p: Param) -> str:
     """ "in [lo, hi]", "> lo" or "<= hi": the words the schema messages use too."""
     if p.lo is not None and p.hi is not None:
-        return f"in {'(' if p.lo_open else '['}{_fmt(p.lo)}, {_fmt(p.hi)}]"
+        return f"in {'(' if p.lo_open else '['}{g(p.lo)}, {g(p.hi)}]"
     if p.lo is not None:
-        return f"{'>' if p.lo_open else '>='} {_fmt(p.lo)}"
-    return f"<= {_fmt(p.hi)}" if p.hi is not None else ""
+        return f"{'>' if p.lo_open else '>='} {g(p.lo)}"
+    return f"<= {g(p.hi)}" if p.hi is not None else ""
 
 
 def check_value(section: str, name: str, value: Any) -> Any:

@@ -12,6 +12,7 @@ import yaml
 
 from .errors import RotbeamInputError
 from .parameters import SECTIONS
+from .schema import show
 
 
 class _Loader(yaml.SafeLoader):
@@ -45,24 +46,24 @@ def scene_sections(spec: Any) -> dict[str, dict[str, Any]]:
     if not isinstance(spec, dict):
         raise RotbeamInputError(
             f"a scene must be a mapping of sections ({', '.join(SECTIONS)}), "
-            f"got {_show(spec)} ({type(spec).__name__})"
+            f"got {show(spec)} ({type(spec).__name__})"
         )
     out = {}
     for name, values in spec.items():
         if name not in SECTIONS:
             raise RotbeamInputError(
-                f"{name} = {_show(values)}: unknown scene section; allowed: {', '.join(SECTIONS)}"
+                f"{name} = {show(values)}: unknown scene section; allowed: {', '.join(SECTIONS)}"
             )
         values = {} if values is None else values
         if not isinstance(values, dict):
             raise RotbeamInputError(
-                f"{name} = {_show(values)}: a scene section must be a mapping of keys, "
+                f"{name} = {show(values)}: a scene section must be a mapping of keys, "
                 f"e.g. {name}: {{{next(iter(_fields(name)))}: ...}}; got {type(values).__name__}"
             )
         for key, value in values.items():
             if key not in _fields(name):
                 raise RotbeamInputError(
-                    f"{name}.{key} = {_show(value)}: unknown key; allowed in {name}: "
+                    f"{name}.{key} = {show(value)}: unknown key; allowed in {name}: "
                     f"{', '.join(_fields(name))}"
                 )
         out[name] = dict(values)
@@ -71,11 +72,6 @@ def scene_sections(spec: Any) -> dict[str, dict[str, Any]]:
 
 def _fields(section: str) -> list[str]:
     return list(SECTIONS[section])
-
-
-def _show(value: Any, width: int = 60) -> str:
-    text = repr(value)
-    return text if len(text) <= width else text[: width - 3] + "..."
 
 
 def load_scene_file(path: str | Path) -> dict[str, Any]:
@@ -98,6 +94,6 @@ def load_scene_file(path: str | Path) -> dict[str, Any]:
     if not isinstance(data, dict):
         raise RotbeamInputError(
             f"scene file {str(path)!r} must hold a mapping of sections ({', '.join(SECTIONS)}), "
-            f"got {_show(data)} ({type(data).__name__})"
+            f"got {show(data)} ({type(data).__name__})"
         )
     return data

@@ -23,7 +23,8 @@ def key_name(path: Any) -> str:
     return out or "the config"
 
 
-def _show(value: Any, width: int = 60) -> str:
+def show(value: Any, width: int = 60) -> str:
+    """repr(value), cut to `width` characters (for one-line error messages)."""
     text = repr(value)
     return text if len(text) <= width else text[: width - 3] + "..."
 
@@ -118,10 +119,10 @@ def schema_error_message(error: Any, root: dict) -> str:
         k = unknown[0] if unknown else "?"
         where = f"in {key_name(path)}" if path else "at the top level"
         return (
-            f"{key_name([*path, k])} = {_show(value.get(k))}: unknown key; allowed {where}: "
+            f"{key_name([*path, k])} = {show(value.get(k))}: unknown key; allowed {where}: "
             + ", ".join(allowed)
         )
-    return f"{key_name(path)} = {_show(value)}: must be {describe_allowed(schema, root)}"
+    return f"{key_name(path)} = {show(value)}: must be {describe_allowed(schema, root)}"
 
 
 def json_numbers(value: Any, path: tuple = ()):

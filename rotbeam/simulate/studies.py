@@ -25,7 +25,7 @@ from ..config.schema import (
     schema_error_message,
     subschema,
 )
-from ..model.params import Beam, fd_for_emax, omega0_for_cmax
+from ..model.params import Beam, Effects, fd_for_emax, omega0_for_cmax
 
 REF = "ref"
 
@@ -175,7 +175,6 @@ def check_config(config: dict[str, Any], schema: dict | None = None) -> None:
                 Beam(**beam)
             except RotbeamInputError as exc:
                 raise RotbeamInputError(f"{where} beam {bid}: {exc}") from None
-    from ..model.params import Effects
     from .sweeps import numerics_from_config
 
     Effects.from_list(config["effects"])

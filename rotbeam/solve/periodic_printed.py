@@ -2,20 +2,17 @@
 
 Used for the printed-appendix variants (`rotbeam.model.elastica_printed`): the residual carries
 the printed symmetric S~ when the model has it; the Jacobian stays ours, which only slows Newton
-down (inexact Newton, GMRES preconditioned by the time-averaged Jacobian, dense LU when GMRES
-stalls).
+down (the Newton step and line search of `rotbeam.solve.periodic`).
 """
 
 from __future__ import annotations
 
 import numpy as np
-import scipy.linalg as sla
-from scipy.sparse.linalg import LinearOperator, gmres
 
 from ..model.elastica import DiscreteElastica
 from ..model.elastica_printed import PrintedElastica
 from ..model.params import Dimensionless
-from .periodic import Collocation, linear_guess
+from .periodic import Collocation, _line_search, _newton_step, linear_guess
 from .spectral import harmonic_tail
 
 
@@ -37,33 +34,6 @@ class PrintedCollocation(Collocation):
         return R
 
 
-def _inexact_newton_step(col: PrintedCollocation, X: np.ndarray, R: np.ndarray) -> np.ndarray:
-    """GMRES on J step = -R (time-averaged preconditioner); dense LU when GMRES stalls."""
-    blocks = col.jacobian_blocks(X)
-    inv = col.averaged_inverse(blocks)
-    size, shape = R.size, R.shape
-    op = LinearOperator(
-        (size, size), lambda v: col.jacobian_times(blocks, v.reshape(shape)).ravel()
-    )
-    pre = LinearOperator((size, size), lambda r: inv(r.reshape(shape)).ravel())
-    step, info = gmres(op, -R.ravel(), rtol=1e-6, atol=0.0, restart=60, maxiter=20, M=pre)
-    if info != 0:
-        step = -sla.solve(col.dense_jacobian(blocks), R.ravel())
-    return step.reshape(shape)
-
-
-def _backtrack(col: PrintedCollocation, X: np.ndarray, step: np.ndarray, rn: float):
-    """Halve the step until the residual's max norm drops (or the step is 1e-3 of Newton's)."""
-    t = 1.0
-    while True:
-        Xt = X + t * step
-        Rt = col.residual(Xt)
-        rt = float(np.max(np.abs(Rt)))
-        if np.isfinite(rt) and (rt < rn or t < 1e-3):
-            return Xt, Rt, rt, t
-        t *= 0.5
-
-
 def periodic_orbit(
     dl: Dimensionless,
     model: DiscreteElastica,
@@ -78,8 +48,8 @@ def periodic_orbit(
     R = col.residual(X)
     rn = float(np.max(np.abs(R)))
     for _ in range(maxiter):
-        step = _inexact_newton_step(col, X, R)
-        X, R, rn, t = _backtrack(col, X, step, rn)
+        step, _, _ = _newton_step(col, col.jacobian_blocks(X), R, "auto")
+        t, X, R, rn = _line_search(col, X, step, rn)
         if float(np.max(np.abs(t * step))) <= rtol * max(float(np.max(np.abs(X))), 1e-300):
             return X, True, harmonic_tail(X)
     return X, False, harmonic_tail(X)

@@ -4,8 +4,7 @@
 # (`snakemake` is injected by Snakemake)
 import pandas as pd
 
-from rotbeam.analysis.claims import load_claims, printed_per_threshold
-from rotbeam.config.scenefile import load_yaml
+from rotbeam.analysis.claims import printed_per_threshold, read_claims
 from rotbeam.model.params import Beam
 from rotbeam.model.secondorder import c0_limit, c0_root
 from rotbeam.report.io import write_table
@@ -13,7 +12,7 @@ from rotbeam.report.joblog import job_log
 
 with job_log(snakemake.log[0], snakemake.input, snakemake.output, snakemake.rule):
     zeta = Beam(**snakemake.params.beam).zeta
-    _, claims = load_claims(load_yaml(open(snakemake.input.claims).read()))
+    _, claims = read_claims(snakemake.input.claims)
     printed = printed_per_threshold(claims, "c0_")
     rows = [
         {"threshold": t, "c0_zeta0": c0_limit(t), "c0_paper": printed.get(round(t, 4)),

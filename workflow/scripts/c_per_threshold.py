@@ -5,13 +5,12 @@
 import pandas as pd
 
 from rotbeam.analysis.boundary import c_per_threshold
-from rotbeam.analysis.claims import load_claims, printed_per_threshold
-from rotbeam.config.scenefile import load_yaml
+from rotbeam.analysis.claims import printed_per_threshold, read_claims
 from rotbeam.report.io import write_table
 from rotbeam.report.joblog import job_log
 
 with job_log(snakemake.log[0], snakemake.input, snakemake.output, snakemake.rule) as log:
-    _, claims = load_claims(load_yaml(open(snakemake.input.claims).read()))
+    _, claims = read_claims(snakemake.input.claims)
     paper = printed_per_threshold(claims, "c_")
     ref = pd.read_csv(snakemake.input.ref)
     beams = pd.concat([pd.read_csv(f) for f in snakemake.input.beams], ignore_index=True)

@@ -4,15 +4,14 @@
 # (`snakemake` is injected by Snakemake)
 import pandas as pd
 
-from rotbeam.analysis.claims import load_claims
+from rotbeam.analysis.claims import read_claims
 from rotbeam.analysis.hypotheses import estar_study
-from rotbeam.config.scenefile import load_yaml
 from rotbeam.model.params import Beam
 from rotbeam.report.io import write_csv, write_table
 from rotbeam.report.joblog import job_log
 
 with job_log(snakemake.log[0], snakemake.input, snakemake.output, snakemake.rule) as log:
-    _, claims = load_claims(load_yaml(open(snakemake.input.claims).read()))
+    _, claims = read_claims(snakemake.input.claims)
     paper = claims.set_index("id")["paper"]
     f5 = snakemake.params.fig5
     line50 = pd.read_csv(snakemake.input.line50[0]) if snakemake.input.line50 else None

@@ -6,15 +6,14 @@ import json
 
 import pandas as pd
 
-from rotbeam.analysis.claims import load_claims
+from rotbeam.analysis.claims import read_claims
 from rotbeam.analysis.hypotheses import fig7_variant_study
-from rotbeam.config.scenefile import load_yaml
 from rotbeam.report.io import write_csv, write_table
 from rotbeam.report.joblog import job_log
 from rotbeam.report.reproduction_figures import fig7_variants
 
 with job_log(snakemake.log[0], snakemake.input, snakemake.output, snakemake.rule) as log:
-    _, claims = load_claims(load_yaml(open(snakemake.input.claims).read()))
+    _, claims = read_claims(snakemake.input.claims)
     within = float(claims.set_index("id").loc["fig7_collapse", "at"]["within"])
     c_ref = json.load(open(snakemake.input.ref_fit))["c"]
     files = zip(snakemake.params.variants, snakemake.input.lines, strict=True)

@@ -5,15 +5,14 @@
 import numpy as np
 import pandas as pd
 
-from rotbeam.analysis.claims import load_claims
+from rotbeam.analysis.claims import read_claims
 from rotbeam.analysis.hypotheses import figD9_study
-from rotbeam.config.scenefile import load_yaml
 from rotbeam.report.io import write_csv
 from rotbeam.report.joblog import job_log
 from rotbeam.report.reproduction_figures import figD9_window
 
 with job_log(snakemake.log[0], snakemake.input, snakemake.output, snakemake.rule) as log:
-    _, claims = load_claims(load_yaml(open(snakemake.input.claims).read()))
+    _, claims = read_claims(snakemake.input.claims)
     window = claims.set_index("id").loc["figD9_range", "at"]
     cfit = pd.read_csv(snakemake.input.cfit)
     printed_c = claims.loc[claims["id"].str.match(r"c_\d"), "paper"].tolist()

@@ -4,15 +4,14 @@
 # (`snakemake` is injected by Snakemake)
 import pandas as pd
 
-from rotbeam.analysis.claims import load_claims
+from rotbeam.analysis.claims import read_claims
 from rotbeam.analysis.hypotheses import fn_zeta_study
-from rotbeam.config.scenefile import load_yaml
 from rotbeam.model.params import Beam
 from rotbeam.report.io import write_csv, write_table
 from rotbeam.report.joblog import job_log
 
 with job_log(snakemake.log[0], snakemake.input, snakemake.output, snakemake.rule) as log:
-    inputs, claims = load_claims(load_yaml(open(snakemake.input.claims).read()))
+    inputs, claims = read_claims(snakemake.input.claims)
     paper = claims.set_index("id")["paper"]
     table, long = fn_zeta_study(Beam(**snakemake.params.beam), inputs, float(paper["f_n_hz"]),
                                 float(paper["zeta"]), int(snakemake.params.N))  # fmt: skip

@@ -12,17 +12,16 @@ from rotbeam.analysis.claims import (
     builtin_hypotheses,
     c_hypotheses_long,
     judge,
-    load_claims,
     ours_values,
+    read_claims,
 )
-from rotbeam.config.scenefile import load_yaml
 from rotbeam.report.io import write_csv, write_text
 from rotbeam.report.joblog import job_log
 from rotbeam.report.reproduction_figures import claims_markdown
 
 with job_log(snakemake.log[0], snakemake.input, snakemake.output, snakemake.rule) as log:
     inp = snakemake.input
-    _, claims = load_claims(load_yaml(open(inp.claims).read()))
+    _, claims = read_claims(inp.claims)
     out = Outputs(
         table1=pd.read_csv(inp.table1),
         c_per_threshold=pd.read_csv(inp.c_per_threshold),

@@ -4,15 +4,14 @@
 # (`snakemake` is injected by Snakemake)
 import pandas as pd
 
-from rotbeam.analysis.claims import load_claims
-from rotbeam.config.scenefile import load_yaml
+from rotbeam.analysis.claims import read_claims
 from rotbeam.model.params import Beam
 from rotbeam.report.io import write_table
 from rotbeam.report.joblog import job_log
 
 with job_log(snakemake.log[0], snakemake.input, snakemake.output, snakemake.rule):
     b = Beam(**snakemake.params.beam)
-    inputs, claims = load_claims(load_yaml(open(snakemake.input.claims).read()))
+    inputs, claims = read_claims(snakemake.input.claims)
     printed = claims.set_index("id")["paper"]
 
     def paper(name: str, scale: float = 1.0) -> str:
