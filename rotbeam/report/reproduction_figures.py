@@ -38,7 +38,8 @@ def fig7_variants(
             sub = sub.sort_values("C_max")
             z = float(sub["zeta"].iloc[0])
             ax.loglog(sub["x"], sub["E_scaled"], "o-" if bid in good else "o--", ms=4, lw=0.8,
-                      mfc=None if bid in good else "none", label=f"zeta={z:.3g}")  # fmt: skip
+                      mfc=None if bid in good else "none",
+                      label=f"{_short(bid, tag)}, zeta={z:.3g}")  # fmt: skip
         finite = b["x"][np.isfinite(b["x"]) & (b["x"] > 0)]
         lo, hi = (finite.min(), finite.max()) if len(finite) else (1e-2, 1e3)
         x = np.logspace(np.log10(lo) - 0.3, np.log10(hi) + 0.3, 100)
@@ -50,10 +51,15 @@ def fig7_variants(
                      fontsize=9)  # fmt: skip
         ax.set_xlabel(r"$x = S_1 G a^2 \mathcal{C}_{max}/\mathcal{E}_n^2$")
         ax.set_ylabel(r"$\mathcal{E}^\star/\mathcal{E}_n$")
-        ax.legend(fontsize=6)
+        ax.legend(fontsize=5, loc="upper left")  # the data run along the diagonal, from x ~ 1
     for k in range(len(tags), nrow * ncol):
         axes[k // ncol, k % ncol].set_axis_off()
     save(fig, pdf, png)
+
+
+def _short(beam_id: str, tag: str) -> str:
+    """ "E100000_L0.0001_hL0.05" from the study's "r7_E100000_L0.0001_hL0.05_eta-R"."""
+    return beam_id.removeprefix("r7_").removesuffix(f"_{tag}")
 
 
 def figD9_window(
@@ -79,13 +85,22 @@ def figD9_window(
     a.legend(fontsize=6, title=f"h/L = {window['h_over_L']:g}", title_fontsize=6)
     b.set_xlim(c_lo, c_hi)
     b.set_ylim(e_lo, e_hi)
-    b.set_title("(b) as printed: no data in this window", fontsize=9)
+    b.set_title("as printed: no data in this window", fontsize=9)
     b.set_xlabel(r"$\mathcal{C}_{max}$")
+    b.set_ylabel(r"$\mathcal{E}^\star/\mathcal{E}_n$")
     col = [k for k in bound.columns if k.startswith("E_scaled_at")][0]
-    cax.semilogx(bound["delta"], bound[col], color="k", label=col.replace("_", " "))
+    cax.semilogx(bound["delta"], bound[col], color="k",
+                 label=r"largest $\mathcal{E}^\star/\mathcal{E}_n$ allowed")  # fmt: skip
     cax.semilogx(bound["delta"], bound["S1_delta"], color=GREY, ls="--", label=r"$S_1\delta$")
-    cax.axhline(e_lo, color=ACCENT, ls=":", label=f"E*/E_n = {e_lo:g}")
+    cax.axhline(
+        e_lo,
+        color=ACCENT,
+        ls=":",
+        label=rf"window floor $\mathcal{{E}}^\star/\mathcal{{E}}_n$ = {e_lo:g}",
+    )
     cax.set_yscale("log")
+    cax.set_ylim(top=3 * e_lo)  # room above the window's floor for the panel label
+    cax.set_ylabel(r"$\mathcal{E}^\star/\mathcal{E}_n$, $S_1\delta$")
     cax.set_xlabel(r"$\delta = L/R$")
     cax.set_title(rf"Eq. (scaled_analytical_sol) at $\mathcal{{C}}_{{max}}$ = {c_max_bound:g}",
                   fontsize=9)  # fmt: skip
