@@ -11,9 +11,10 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from rotbeam.analysis.claims import agrees, c_hypotheses_long, judge, load_claims
+from rotbeam.analysis.claims import agrees, c_hypotheses_long, judge
 from rotbeam.analysis.collapse import southwell_delta
 from rotbeam.analysis.hypotheses import single_change_study
+from rotbeam.analysis.paper_claims import load_claims
 from rotbeam.config.errors import RotbeamInputError
 from rotbeam.config.scenefile import load_yaml
 from rotbeam.model.params import BETA1, Beam

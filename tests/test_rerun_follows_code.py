@@ -5,7 +5,10 @@ simulations run it; an edit to comments and docstrings only reruns nothing.
 The finished quick run is copied with the package beside it (the copy runs with PYTHONPATH on it),
 and the copy's modules are edited.  The expected rules are read off the scripts by hand, not by
 rotbeam.provenance: boundary.py is imported by boundary_table, c_per_threshold, fig4, fig6 and
-fig7, and through report/surrogate_figures.py by the two surrogate rules."""
+fig7, through report/surrogate_figures.py by the two surrogate rules, and through
+analysis/hypotheses.py (fig7_variant_study) by the four study rules repro_* that import it and by
+reproduction (analysis/claims.py imports hypotheses).  table1 and c0_table read the printed values
+through analysis/paper_claims.py, which imports neither boundary nor the elastica."""
 
 from __future__ import annotations
 
@@ -25,6 +28,11 @@ BOUNDARY_RULES = {
     "fig7",
     "surrogate_southwell",
     "surrogate_vs_full",
+    "repro_estar",
+    "repro_fig7",
+    "repro_figD9",
+    "repro_fn_zeta",
+    "reproduction",
 }
 SIMULATIONS = {"sweep_line", "scene_series", "shapes"}
 

@@ -15,66 +15,17 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from pathlib import Path
-from typing import Any
 
 import numpy as np
 import pandas as pd
 
-from ..config.errors import RotbeamInputError
-from ..config.scenefile import load_yaml
 from ..model.criterion import power_spectrum
 from .collapse import collapse_fraction
 from .hypotheses import plateau
+from .paper_claims import KINDS
 
-KINDS = {
-    "stated": "the paper's stated uncertainty",
-    "rounding": "the printed rounding",
-    "exact": "exactly (a count or identity)",
-    "at_least": "the claimed side (>=)",
-    "at_most": "the claimed side (<=)",
-    "below": "the claimed side (<)",
-}
 COLUMNS = ["id", "source", "paper", "ours", "unit", "status", "explained_value", "explanation"]
 HYPOTHESIS_COLUMNS = ["claim", "hypothesis", "value", "note"]
-
-
-def load_claims(data: dict[str, Any]) -> tuple[dict[str, dict], pd.DataFrame]:
-    """(printed inputs, claims table) from the parsed paper_claims.yaml; checks every row."""
-    rows = data.get("claims") or []
-    need = ("id", "source", "paper", "unit", "tolerance", "kind")
-    for i, r in enumerate(rows):
-        missing = [k for k in need if k not in r]
-        if missing:
-            raise RotbeamInputError(f"paper_claims claims[{i}] lacks {', '.join(missing)}")
-        if r["kind"] not in KINDS:
-            raise RotbeamInputError(
-                f"paper_claims {r['id']}: kind = {r['kind']!r}; allowed: {', '.join(KINDS)}"
-            )
-        if not (isinstance(r["tolerance"], (int, float)) and r["tolerance"] >= 0):
-            raise RotbeamInputError(f"paper_claims {r['id']}: tolerance must be a number >= 0")
-    ids = [r["id"] for r in rows]
-    dup = sorted({i for i in ids if ids.count(i) > 1})
-    if dup:
-        raise RotbeamInputError(f"paper_claims: duplicate ids {', '.join(dup)}")
-    return dict(data.get("inputs") or {}), pd.DataFrame(rows)
-
-
-def read_claims(path: str | Path) -> tuple[dict[str, dict], pd.DataFrame]:
-    """`load_claims` of the file at `path` (workflow/resources/paper_claims.yaml)."""
-    return load_claims(load_yaml(Path(path).read_text()))
-
-
-def printed_per_threshold(claims: pd.DataFrame, prefix: str) -> dict[float, float]:
-    """Printed values whose id is `prefix` + a threshold ("c_0.10", "c0_0.02") by threshold."""
-    out = {}
-    for cid, value in zip(claims["id"], claims["paper"], strict=True):
-        rest = str(cid)[len(prefix) :] if str(cid).startswith(prefix) else ""
-        try:
-            out[round(float(rest), 4)] = float(value)
-        except ValueError:
-            continue
-    return out
 
 
 def agrees(value: float, paper: float, tolerance: float, kind: str) -> bool:

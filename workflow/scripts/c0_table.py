@@ -4,7 +4,7 @@
 # (`snakemake` is injected by Snakemake)
 import pandas as pd
 
-from rotbeam.analysis.claims import printed_per_threshold, read_claims
+from rotbeam.analysis.paper_claims import printed_per_threshold, read_claims
 from rotbeam.model.params import Beam
 from rotbeam.model.secondorder import c0_limit, c0_root
 from rotbeam.report.io import write_table

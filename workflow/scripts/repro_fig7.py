@@ -6,8 +6,8 @@ import json
 
 import pandas as pd
 
-from rotbeam.analysis.claims import read_claims
 from rotbeam.analysis.hypotheses import fig7_variant_study
+from rotbeam.analysis.paper_claims import read_claims
 from rotbeam.report.io import write_csv, write_table
 from rotbeam.report.joblog import job_log
 from rotbeam.report.reproduction_figures import fig7_variants

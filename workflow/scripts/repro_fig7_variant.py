@@ -11,14 +11,13 @@ from rotbeam.simulate.studies import run_grid_lines
 from rotbeam.simulate.sweeps import numerics_from_config
 
 with job_log(snakemake.log[0], snakemake.input, snakemake.output, snakemake.rule) as log:
-    with open(snakemake.log[0], "w") as log:
-        lines = run_grid_lines(
-            snakemake.params.beams,
-            snakemake.params.spec,
-            snakemake.params.amplitude,
-            Effects.from_list(snakemake.params.effects),
-            numerics_from_config(snakemake.params.numerics),
-            log=lambda msg: print(msg, file=log, flush=True),
-        )
+    lines = run_grid_lines(
+        snakemake.params.beams,
+        snakemake.params.spec,
+        snakemake.params.amplitude,
+        Effects.from_list(snakemake.params.effects),
+        numerics_from_config(snakemake.params.numerics),
+        log=log.info,  # one line per point, in the job's log
+    )
     frames = [df.assign(beam=bid) for bid, dfs in lines.items() for df in dfs]
     write_csv(pd.concat(frames, ignore_index=True), snakemake.output[0])

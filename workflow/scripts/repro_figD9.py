@@ -5,8 +5,8 @@
 import numpy as np
 import pandas as pd
 
-from rotbeam.analysis.claims import read_claims
 from rotbeam.analysis.hypotheses import figD9_study
+from rotbeam.analysis.paper_claims import read_claims
 from rotbeam.report.io import write_csv
 from rotbeam.report.joblog import job_log
 from rotbeam.report.reproduction_figures import figD9_window

@@ -4,7 +4,7 @@
 # (`snakemake` is injected by Snakemake)
 import pandas as pd
 
-from rotbeam.analysis.claims import read_claims
+from rotbeam.analysis.paper_claims import read_claims
 from rotbeam.model.params import Beam
 from rotbeam.report.io import write_table
 from rotbeam.report.joblog import job_log

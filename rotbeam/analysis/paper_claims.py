@@ -1,0 +1,63 @@
+"""The paper's printed values: reading and checking workflow/resources/paper_claims.yaml.
+
+One row per claim (id, source in the paper, printed value, unit, tolerance and its kind) plus the
+printed inputs the studies start from.  Kept apart from `claims` (which judges ours against them)
+so that a table that only quotes the printed values does not depend on the studies' code.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+import pandas as pd
+
+from ..config.errors import RotbeamInputError
+from ..config.scenefile import load_yaml
+
+KINDS = {
+    "stated": "the paper's stated uncertainty",
+    "rounding": "the printed rounding",
+    "exact": "exactly (a count or identity)",
+    "at_least": "the claimed side (>=)",
+    "at_most": "the claimed side (<=)",
+    "below": "the claimed side (<)",
+}
+
+
+def load_claims(data: dict[str, Any]) -> tuple[dict[str, dict], pd.DataFrame]:
+    """(printed inputs, claims table) from the parsed paper_claims.yaml; checks every row."""
+    rows = data.get("claims") or []
+    need = ("id", "source", "paper", "unit", "tolerance", "kind")
+    for i, r in enumerate(rows):
+        missing = [k for k in need if k not in r]
+        if missing:
+            raise RotbeamInputError(f"paper_claims claims[{i}] lacks {', '.join(missing)}")
+        if r["kind"] not in KINDS:
+            raise RotbeamInputError(
+                f"paper_claims {r['id']}: kind = {r['kind']!r}; allowed: {', '.join(KINDS)}"
+            )
+        if not (isinstance(r["tolerance"], (int, float)) and r["tolerance"] >= 0):
+            raise RotbeamInputError(f"paper_claims {r['id']}: tolerance must be a number >= 0")
+    ids = [r["id"] for r in rows]
+    dup = sorted({i for i in ids if ids.count(i) > 1})
+    if dup:
+        raise RotbeamInputError(f"paper_claims: duplicate ids {', '.join(dup)}")
+    return dict(data.get("inputs") or {}), pd.DataFrame(rows)
+
+
+def read_claims(path: str | Path) -> tuple[dict[str, dict], pd.DataFrame]:
+    """`load_claims` of the file at `path` (workflow/resources/paper_claims.yaml)."""
+    return load_claims(load_yaml(Path(path).read_text()))
+
+
+def printed_per_threshold(claims: pd.DataFrame, prefix: str) -> dict[float, float]:
+    """Printed values whose id is `prefix` + a threshold ("c_0.10", "c0_0.02") by threshold."""
+    out = {}
+    for cid, value in zip(claims["id"], claims["paper"], strict=True):
+        rest = str(cid)[len(prefix) :] if str(cid).startswith(prefix) else ""
+        try:
+            out[round(float(rest), 4)] = float(value)
+        except ValueError:
+            continue
+    return out
