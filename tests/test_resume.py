@@ -33,7 +33,7 @@ REF_BEAM = dict(L=0.040, h=0.002, b=0.010, E=1.22e6, rho=1170.2, R=0.155, gamma=
 
 
 def test_failed_sweep_points_are_rows_with_their_reason(monkeypatch, tmp_path):
-    simulate = rotbeam.sweeps.simulate
+    simulate = rotbeam.simulate.sweeps.simulate
 
     def flaky(scene, **kw):
         if scene.drive.f_d == 2.0:  # the solver raises
@@ -42,7 +42,7 @@ def test_failed_sweep_points_are_rows_with_their_reason(monkeypatch, tmp_path):
             scene = replace(scene, numerics=replace(scene.numerics, max_seconds=1e-4))
         return simulate(scene, **kw)
 
-    monkeypatch.setattr(rotbeam.sweeps, "simulate", flaky)
+    monkeypatch.setattr(rotbeam.simulate.sweeps, "simulate", flaky)
     log = []
     df = scan_line(Beam(), 5.0, [1.0, 2.0, 3.0, 4.0], numerics=Numerics(N=6), log=log.append)
     assert list(df["f_d"]) == [1.0, 2.0, 3.0, 4.0] and list(df.columns) == COLUMNS

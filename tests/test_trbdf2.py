@@ -355,7 +355,7 @@ def test_no_private_scipy_import_and_same_jacobian():
     import ast
     import inspect
 
-    import rotbeam.trbdf2 as t
+    import rotbeam.solve.trbdf2 as t
 
     tree = ast.parse(inspect.getsource(t))
     modules = [n.module for n in ast.walk(tree) if isinstance(n, ast.ImportFrom)]
