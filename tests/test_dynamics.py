@@ -97,7 +97,7 @@ def test_verified_orbit_is_reported_from_the_collocation():
     from rotbeam.solve.spectral import trig_interpolate
 
     dl = dl_of(5.0, 2.0)
-    num = Numerics(N=20, ss_tol=1e-2, rtol=1e-2, tail_tol=1e-2)
+    num = Numerics(N=20, ss_tol=1e-2, rtol=1e-2, tail_tol=1e-2, certify="time")
     a = steady_state(dl, num)
     assert a.converged and a.periods == 1 and "verified" in a.message
     samples = trig_interpolate(a.periodic.theta.T, num.samples_per_period).T
@@ -109,13 +109,14 @@ def test_verified_orbit_is_reported_from_the_collocation():
 
 def test_verification_rejects_an_inaccurate_orbit():
     """Near resonance (7 Hz) a collocation allowed a coarse harmonic tail (M = 17: 0.14 % off in
-    RMS) fails the one-period check at ss_tol 1e-5; the run goes on time stepping at the tight
+    RMS) fails the monodromy certificate and the one-period check at ss_tol 1e-5; the run goes on time stepping at the tight
     tolerance and lands on the time-stepped steady state, not on the collocation."""
     dl = dl_of(5.0, 7.0)
     coarse = steady_state(dl, Numerics(N=20, integrate=False, tail_tol=0.05))
     assert coarse.periodic.M == 17
     checked = steady_state(dl, Numerics(N=20, tail_tol=0.05, ss_tol=1e-5, rtol=1e-7))
     assert checked.converged and checked.periods > 1 and "verified" not in checked.message
+    assert checked.message.startswith("not certified by the monodromy")  # nor by its monodromy
     ref = steady_state(dl, Numerics(N=20, tail_tol=1e-8, integrate=False))
     assert ref.periodic.harmonic_tail < 1e-6
     err_coarse = abs(rms(coarse.y_m) - rms(ref.y_m)) / rms(ref.y_m)

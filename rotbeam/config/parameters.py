@@ -91,6 +91,9 @@ SECTIONS: dict[str, dict[str, Param]] = {
         "start": _choice("periodic", "initial state", "periodic", "linear", "quasistatic", "rest"),
         "tail_tol": _real(1e-3, "harmonic tail of the collocated orbit", "", 1e-12, 0.1),
         "integrate": _bool(True, "verify the collocated orbit by time stepping"),
+        "certify": _choice(
+            "monodromy", "what accepts an attracting collocated orbit", "monodromy", "time"
+        ),  # fmt: skip
         "jacobian": _choice("exact", "Jacobian of the stepper", "exact", "fd"),
         "extrapolate": _bool(False, "Richardson-extrapolate RMS from N and N // 2"),
     },

@@ -19,6 +19,16 @@ Why not Hill's method: the Floquet exponents would be eigenvalues of the (M n)-s
 collocation pencil (2535 unknowns at N = 40, M = 65), a dense eigenproblem of 5070 with
 spurious exponents to sort out; why not solve_ivp of the matrix ODE: (2n)^2 = 6084 unknowns in
 an implicit stepper.  Here the cost is S Jacobians and S 78 x 78 matrix exponentials.
+
+The defect.  Given the right-hand side too, the same pass measures how far the orbit is from a
+true periodic solution (the certificate of `rotbeam.solve.stability.monodromy_certificate`).  Let
+x(t) be the interpolant, r(t) = x' - f(t, x) its residual (zero at the collocation instants,
+not between them).  The solution from x(0) is x + e with e' = J e - r + O(e^2), e(0) = 0, so the
+one-period map moves x(0) by delta = e(P) = -int_0^P Phi(P, s) r(s) ds.  Each step propagates e
+exactly for J and r frozen at the midpoint: the exponential of the augmented matrix
+[[h J, -h r], [0, 0]] is [[exp(h J), -h phi1(h J) r], [0, 1]], so the stiff modes see r / |lambda|,
+not h r (one 79 x 79 exponential instead of 78 x 78).  The fixed point of the period map is then
+x(0) + w with (I - Phi) w = delta, to first order in delta.
 """
 
 from __future__ import annotations
@@ -48,6 +58,14 @@ class FloquetResult:
     steps: int  #: Magnus steps over the period
     seconds: float
     method: str = "exponential midpoint (Magnus-2) product of matrix exponentials"
+    defect: np.ndarray | None = None  #: one-period map minus identity at the orbit's start
+
+    def fixed_point_offset(self) -> np.ndarray | None:
+        """w with (I - Phi) w = defect: how far the orbit's start is from the true periodic
+        state, to first order (None without a defect, or when 1 is a multiplier)."""
+        if self.defect is None or not self.stable:
+            return None
+        return np.linalg.solve(np.eye(self.monodromy.shape[0]) - self.monodromy, self.defect)
 
     @property
     def max_abs(self) -> float:
@@ -92,10 +110,29 @@ def propagator(jacobians, h: float) -> np.ndarray:
     return Phi
 
 
-def multipliers_of(Phi: np.ndarray, steps: int, seconds: float) -> FloquetResult:
+def propagator_with_defect(steps_data, h: float) -> tuple[np.ndarray, np.ndarray]:
+    """(Phi, e(P)) of e' = J(t) e - r(t), e(0) = 0, over the steps whose midpoint (J, r) are
+    given, each of size h: exponentials of the augmented matrix [[h J, -h r], [0, 0]]."""
+    Phi = e = None
+    for J, r in steps_data:
+        dim = J.shape[0]
+        A = np.zeros((dim + 1, dim + 1))
+        A[:dim, :dim] = h * J
+        A[:dim, dim] = -h * r
+        E = sla.expm(A)
+        if Phi is None:
+            Phi, e = E[:dim, :dim], E[:dim, dim].copy()
+        else:
+            Phi, e = E[:dim, :dim] @ Phi, E[:dim, :dim] @ e + E[:dim, dim]
+    return Phi, e
+
+
+def multipliers_of(
+    Phi: np.ndarray, steps: int, seconds: float, defect: np.ndarray | None = None
+) -> FloquetResult:
     mu = np.linalg.eigvals(Phi)
     mu = mu[np.argsort(-np.abs(mu), kind="stable")]
-    return FloquetResult(mu, Phi, steps, seconds)
+    return FloquetResult(mu, Phi, steps, seconds, defect=defect)
 
 
 def trig_eval(X: np.ndarray, period: float, t: np.ndarray, derivative: int = 0) -> np.ndarray:
@@ -117,17 +154,26 @@ def orbit_floquet(
     Z: np.ndarray,
     period: float,
     steps: int | None = None,
+    rhs: Callable[[float, np.ndarray], np.ndarray] | None = None,
 ) -> FloquetResult:
     """Multipliers of the orbit whose states at M equispaced instants are Z (M, dim), for the
     system with Jacobian jac(t, z); the orbit between the instants is Z's trigonometric
-    interpolant.  `steps` defaults to 2 M (at least 32)."""
+    interpolant.  `steps` defaults to 2 M (at least 32).  With the right-hand side rhs(t, z)
+    the result also carries the interpolant's one-period `defect` (module docstring)."""
     t0 = time.perf_counter()
     steps = steps or max(2 * Z.shape[0], 32)
     h = period / steps
     t = (np.arange(steps) + 0.5) * h
     Zs = trig_eval(Z, period, t)
-    Phi = propagator((jac(tk, zk) for tk, zk in zip(t, Zs, strict=True)), h)
-    return multipliers_of(Phi, steps, time.perf_counter() - t0)
+    if rhs is None:
+        Phi = propagator((jac(tk, zk) for tk, zk in zip(t, Zs, strict=True)), h)
+        return multipliers_of(Phi, steps, time.perf_counter() - t0)
+    dZ = trig_eval(Z, period, t, derivative=1)
+    data = (
+        (jac(tk, zk), dzk - rhs(tk, zk)) for tk, zk, dzk in zip(t, Zs, dZ, strict=True)
+    )  # fmt: skip
+    Phi, defect = propagator_with_defect(data, h)
+    return multipliers_of(Phi, steps, time.perf_counter() - t0, defect)
 
 
 def beam_floquet(
@@ -138,14 +184,19 @@ def beam_floquet(
     steps: int | None = None,
 ) -> FloquetResult:
     """Multipliers of the beam's orbit sampled at M equispaced instants of the drive period,
-    theta and theta_t (n, M), with the model's exact `first_order_jacobian`."""
+    theta and theta_t (n, M), with the model's exact `first_order_jacobian`, and the orbit's
+    one-period defect."""
     n = model.n
 
     def jac(t: float, z: np.ndarray) -> np.ndarray:
         return model.first_order_jacobian(z[:n], z[n:], dl.lam(t), dl.lam_dot(t))
 
+    def rhs(t: float, z: np.ndarray) -> np.ndarray:
+        acc, _, _ = model.acceleration(z[:n], z[n:], dl.lam(t), dl.lam_dot(t))
+        return np.concatenate([z[n:], acc])
+
     Z = np.concatenate([theta, theta_t], axis=0).T
-    return orbit_floquet(jac, Z, dl.period, steps)
+    return orbit_floquet(jac, Z, dl.period, steps, rhs)
 
 
 def sampled_beam_floquet(

@@ -33,6 +33,9 @@ class Numerics:
     start: str = _d("start")  #: initial state: "periodic", "linear", "quasistatic" or "rest"
     tail_tol: float = _d("tail_tol")  #: harmonic tail of the periodic (collocation) start
     integrate: bool = _d("integrate")  #: verify the collocated orbit by time stepping
+    #: "monodromy": an attracting orbit whose defect-based offset is small is accepted without
+    #: the verification period; "time": always one period of time stepping (rotbeam.solve.steady)
+    certify: str = _d("certify")
     jacobian: str = _d("jacobian")  #: "exact" (analytic) or "fd" (the stepper's differences)
     extrapolate: bool = _d("extrapolate")  #: Richardson from N and N // 2 (rotbeam.simulate)
 

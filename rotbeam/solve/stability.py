@@ -6,10 +6,15 @@
   pushed along its most unstable Floquet direction, so that the stepper does not sit on the
   unstable orbit for as long as its slow growth would let it pass the transient check.
 * `window_stability`: the multipliers of the orbit time stepping settled on (its samples).
+* `monodromy_certificate`: whether an attracting collocated orbit is accepted without time
+  stepping: its distance to the true periodic state, from its one-period defect and the
+  monodromy, is below the steady-state tolerance with a safety factor.
 * `stability_note`: the words the message gains.
 """
 
 from __future__ import annotations
+
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -17,6 +22,11 @@ from ..model.elastica import DiscreteElastica
 from ..model.params import Dimensionless
 from .floquet import FloquetResult, beam_floquet, sampled_beam_floquet
 from .periodic import PeriodicResult
+
+#: the monodromy certificate asks the estimated offset to be this many times below ss_tol: the
+#: estimate is first order in the defect and its quadrature (2 M midpoints) is within a factor 2
+#: of the defect measured by tight time stepping at the benchmark scenes (tests/test_floquet.py)
+CERTIFICATE_SAFETY = 10.0
 
 #: size of the push off an unstable orbit, relative to the response (max |Theta|)
 LEAVE_FRACTION = 0.05
@@ -53,6 +63,39 @@ def window_stability(
     if theta_one_period.ndim != 2 or theta_one_period.shape[1] < 8:
         return None
     return sampled_beam_floquet(model, dl, theta_one_period)
+
+
+@dataclass(frozen=True)
+class Certificate:
+    """Outcome of `monodromy_certificate`: the offset estimate and whether it certifies."""
+
+    offset: float  #: estimated distance to the true periodic state, relative to the response
+    limit: float  #: what it had to be below: ss_tol / CERTIFICATE_SAFETY
+    certified: bool
+
+    def describe(self) -> str:
+        verdict = "<=" if self.certified else ">"
+        return f"monodromy offset estimate {self.offset:.2g} {verdict} {self.limit:.2g}"
+
+
+def monodromy_certificate(
+    fl: FloquetResult | None, theta: np.ndarray, ss_tol: float, wref: float
+) -> Certificate | None:
+    """Certificate of an attracting orbit (theta: its angles, (n, M)) from the defect its
+    multipliers carry; None when there is none to give (no defect, or not stable).
+
+    The fixed point of the period map is the orbit's start plus w, (I - Phi) w = defect (first
+    order).  |w| (max-norm, velocities divided by `wref`, as the time-stepped transient bound)
+    relative to max |Theta| must be below ss_tol / CERTIFICATE_SAFETY: the same quantity the
+    verification period bounds by d rho / (1 - rho), with the margin of an estimate."""
+    w = fl.fixed_point_offset() if fl is not None else None
+    if w is None or not np.all(np.isfinite(w)):
+        return None
+    n = w.size // 2
+    size = max(float(np.max(np.abs(theta))), 1e-300)
+    offset = max(float(np.max(np.abs(w[:n]))), float(np.max(np.abs(w[n:]))) / wref) / size
+    limit = ss_tol / CERTIFICATE_SAFETY
+    return Certificate(offset, limit, offset <= limit)
 
 
 def stability_note(fl: FloquetResult | None) -> str:

@@ -20,11 +20,16 @@ A single period cannot expose a slowly growing instability (its multiplier would
 1 / rho to show), so the orbit's Floquet multipliers are computed first (`rotbeam.solve.stability`):
 an unstable orbit is left along its unstable direction and time stepping decides; the reported
 steady state carries the multipliers of the orbit it is (docs/stability.md).
+An attracting orbit can skip the verification period (numerics.certify = "monodromy", the
+default): the same pass that gives its multipliers gives its one-period defect, and the
+distance to the true periodic state, (I - Phi)^-1 defect, is compared with ss_tol
+(`rotbeam.solve.stability.monodromy_certificate`); the message says which certificate was used.
 Without damping no steady state is reached: we say so and return the last periods seen.
 
-`steady_state` runs these as named steps: `initial_state`, `tolerances` (rtol, the first-period
-check tolerance, the absolute scale), `march` (period by period with a `PeriodStepper`, which
-holds the wall-time deadline and counts evaluations) and `rms_window`.
+`steady_state` runs these as named steps: `initial_state`, `certified` (the monodromy
+certificate), `tolerances` (rtol, the first-period check tolerance, the absolute scale), `march`
+(period by period with a `PeriodStepper`, which holds the wall-time deadline and counts
+evaluations) and `rms_window`.
 """
 
 from __future__ import annotations
@@ -48,6 +53,7 @@ from .spectral import trig_interpolate
 from .stability import (
     STATUS_UNSTABLE,
     leave_orbit,
+    monodromy_certificate,
     orbit_stability,
     stability_note,
     window_stability,
@@ -152,6 +158,9 @@ def _from_collocation(
     fl = orbit_stability(model, dl, res)
     ok = res.converged and res.harmonic_tail <= num.tail_tol and model.eta > 0.0
     msg = f"collocation M={res.M}: {res.message}, harmonic tail {res.harmonic_tail:.2g}"
+    cert = monodromy_certificate(fl, res.theta, num.ss_tol, max(dl.omega, 1.0))
+    if cert is not None:
+        msg += f"; {cert.describe()}"
     msg += stability_note(fl)
     unstable = ok and fl is not None and fl.unstable
     if unstable:
@@ -174,6 +183,45 @@ def _from_collocation(
         periodic=res,
         floquet=fl,
     )
+
+
+def certified(
+    model: DiscreteElastica,
+    dl: Dimensionless,
+    num: Numerics,
+    periodic: PeriodicResult,
+    fl: FloquetResult | None,
+    t0: float,
+) -> tuple[SteadyState | None, str]:
+    """The collocated orbit as the steady state when the monodromy certifies it (no time
+    stepping), else None and why not (for the message of the time-stepped check)."""
+    if num.certify != "monodromy" or periodic.harmonic_tail > num.tail_tol:
+        return None, ""
+    cert = monodromy_certificate(fl, periodic.theta, num.ss_tol, max(dl.omega, 1.0))
+    if cert is None:
+        return None, ""
+    if not cert.certified:
+        return None, f"not certified by the monodromy ({cert.describe()}); "
+    m, p = num.samples_per_period, num.rms_periods
+    theta = np.tile(trig_interpolate(periodic.theta.T, m).T, (1, p))
+    message = (
+        f"collocation orbit (M={periodic.M}, harmonic tail {periodic.harmonic_tail:.2g}) "
+        f"certified by the monodromy ({cert.describe()})" + stability_note(fl)
+    )
+    state = SteadyState(
+        tau=period_samples(dl, 0, p, m),
+        theta=theta,
+        y_m=np.atleast_1d(model.grid.midspan(theta)),
+        converged=True,
+        status=0,
+        message=message,
+        periods=0,
+        transient=cert.offset,
+        seconds=time.perf_counter() - t0,
+        periodic=periodic,
+        floquet=fl,
+    )
+    return state, ""
 
 
 @dataclass(frozen=True)
@@ -447,6 +495,11 @@ def steady_state(
     orbit_fl = orbit_stability(model, dl, periodic)  # an unstable orbit is left, not verified
     unstable_orbit = orbit_fl is not None and orbit_fl.unstable
     from_orbit = periodic is not None and periodic.converged and not unstable_orbit
+    why_not = ""
+    if from_orbit:
+        state, why_not = certified(model, dl, num, periodic, orbit_fl, t0)
+        if state is not None:
+            return state
     tol = tolerances(model, dl, num, z, response_scale, periodic, from_orbit)
     if unstable_orbit:
         z = leave_orbit(z, orbit_fl, tol.scale)
@@ -454,6 +507,7 @@ def steady_state(
     run = march(stepper, z, from_orbit, progress)
     win = rms_window(stepper, run, periodic, from_orbit)
     status, message, fl = reported_stability(model, dl, num, win, orbit_fl, from_orbit)
+    message = why_not + message
     return SteadyState(
         tau=win.tau,
         theta=win.theta,
