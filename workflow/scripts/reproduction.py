@@ -13,8 +13,8 @@ from rotbeam.analysis.claims import (
     c_hypotheses_long,
     judge,
     ours_values,
-    read_claims,
 )
+from rotbeam.analysis.paper_claims import read_claims
 from rotbeam.report.io import write_csv, write_text
 from rotbeam.report.joblog import job_log
 from rotbeam.report.reproduction_figures import claims_markdown
