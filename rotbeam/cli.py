@@ -82,6 +82,10 @@ def build_parser() -> argparse.ArgumentParser:
     c.add_argument("--ftol", type=_finite, default=1e-3,
                    help="relative tolerance on f_d*, in [1e-8, 0.1] (default 1e-3)")  # fmt: skip
 
+    e = sub.add_parser("effects", help="each effect's share of RMS(y_m) and of Delta RMS at one "
+                       "scene, by switching it off (or on), and what each costs")  # fmt: skip
+    _scene_flags(e, drive_frequency=True)
+
     _uncertainty_flags(s)
     _uncertainty_flags(c)
     _calibration_parsers(sub)
@@ -290,6 +294,30 @@ def cmd_critical(args: argparse.Namespace) -> int:
         if prop is not None:
             _print_uncertainty(prop)
     return 0 if res.found else 1
+
+
+def cmd_effects(args: argparse.Namespace) -> int:
+    from .analysis.effect_budget import effect_budget
+
+    budget = effect_budget(_scene_from_args(args))
+    if args.json:
+        print(json.dumps(budget.as_dict(), default=float))
+        return 0 if budget.shares else 1
+    print(f"RMS(y_m)/L {budget.rms:.6g}, Delta RMS {budget.delta_rms:.4g} "
+          f"({budget.seconds:.3g} s)")  # fmt: skip
+    if not budget.shares:
+        print("no steady state (or no deflection) to share out")
+        return 1
+    print(f"{'effect':12s} {'in scene':8s} {'measured by':22s} {'share RMS':>10s} "
+          f"{'share Delta':>11s} {'seconds':>8s}")  # fmt: skip
+    for r in budget.shares:
+        print(f"{r.effect:12s} {'on' if r.on_in_scene else 'off':8s} {r.method:22s} "
+              f"{r.share_rms:+10.4f} {r.share_delta:+11.4f} {r.seconds:8.3g}"
+              + (f"  ({r.note})" if r.note else ""))  # fmt: skip
+    order = " -> ".join(f"{k} {v:+.4f}" for k, v in budget.sequential.items())
+    print(f"sequential shares (switched off in turn; they add to 1): {order}")
+    print(f"total {budget.total_seconds:.3g} s")
+    return 0
 
 
 def _check_rotation(flag: str, value: float, c: float, formula: str) -> None:
@@ -594,6 +622,8 @@ def main(argv: list[str] | None = None) -> int:
             return cmd_bench(args)
         if args.command == "critical":
             return cmd_critical(args)
+        if args.command == "effects":
+            return cmd_effects(args)
         if args.command in CALIBRATION_COMMANDS:
             return CALIBRATION_COMMANDS[args.command](args)
         return cmd_modes(args)

@@ -1,0 +1,174 @@
+"""The effect budget of a scene: what each effect of the model contributes to RMS(y_m) and to
+Delta RMS, and what it costs to simulate.
+
+Each effect is measured against the scene as given, one at a time:
+
+* an effect that is on is switched off (``switched off``): its share of RMS is
+  (RMS - RMS_without) / RMS, its share of Delta RMS is Delta - Delta_without (Delta RMS is
+  already relative).  Switching off `centrifugal` also switches off `softening`, which is part
+  of the centrifugal load (the row says so).
+* an effect that is off is switched on (``switched on``): the shares are what leaving it out
+  costs, (RMS_with - RMS) / RMS and Delta_with - Delta.
+* damping cannot be switched off: an undamped beam has no steady state.  Its shares are first
+  order in gamma (``first order in gamma``): gamma dRMS/dgamma / RMS by central differences at
+  gamma (1 +- 1 %), the linear extrapolation of RMS to gamma = 0.
+
+One-at-a-time shares do not add up: effects interact (the centrifugal stiffening sets how far
+the Euler load deflects the beam).  So the budget also gives *sequential* shares, which do: the
+effects that are on (damping excepted) are switched off one after another in the order
+`SEQUENCE` (the Euler load, the forcing, last), and effect k's sequential share is
+(RMS_{k-1} - RMS_k) / RMS; they telescope to (RMS - RMS_last) / RMS = 1, since with every load
+off the beam stays straight (RMS_last = 0).  The order matters and is stated.  The one-at-a-time
+share of the Euler load is 1 for the same reason.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field, fields, replace
+from typing import Any
+
+from ..model.params import Effects
+from ..simulate.scene import Scene, SceneResult, simulate
+
+#: relative step of gamma for the damping's first-order share
+GAMMA_STEP = 0.01
+
+#: the order in which the sequential shares switch the effects off (damping is never switched)
+SEQUENCE = ("coriolis", "softening", "centrifugal", "euler")
+
+
+@dataclass(frozen=True)
+class EffectShare:
+    """One effect's row of the budget."""
+
+    effect: str
+    on_in_scene: bool
+    method: str  #: "switched off", "switched on" or "first order in gamma"
+    rms: float  #: RMS(y_m) / L of the variant (NaN for the first-order row)
+    delta_rms: float  #: Delta RMS of the variant
+    share_rms: float
+    share_delta: float
+    seconds: float
+    converged: bool
+    note: str = ""
+
+    def as_dict(self) -> dict[str, Any]:
+        return {f.name: getattr(self, f.name) for f in fields(self)}
+
+
+@dataclass
+class EffectBudget:
+    """The scene's own result and one `EffectShare` per effect."""
+
+    scene: Scene
+    rms: float
+    delta_rms: float
+    seconds: float  #: the scene's own simulation
+    shares: list[EffectShare] = field(default_factory=list)
+    sequential: dict[str, float] = field(default_factory=dict)  #: effect -> sequential share
+    rms_last: float = float("nan")  #: RMS with every effect of `sequential` switched off
+    sequential_seconds: float = 0.0
+
+    @property
+    def total_seconds(self) -> float:
+        return self.seconds + sum(s.seconds for s in self.shares) + self.sequential_seconds
+
+    def as_dict(self) -> dict[str, Any]:
+        return {
+            "rms_dynamic": self.rms,
+            "delta_rms": self.delta_rms,
+            "seconds": self.seconds,
+            "total_seconds": self.total_seconds,
+            "effects": [s.as_dict() for s in self.shares],
+            "sequential": {
+                "order": list(self.sequential),
+                "shares": self.sequential,
+                "rms_last": self.rms_last,
+            },  # fmt: skip
+        }
+
+
+def _toggled(effects: Effects, name: str) -> tuple[Effects, str]:
+    """Effects with `name` flipped; switching centrifugal off takes softening with it."""
+    values = {f.name: getattr(effects, f.name) for f in fields(effects)}
+    values[name] = not values[name]
+    note = ""
+    if name == "centrifugal" and not values[name] and values.get("softening"):
+        values["softening"] = False
+        note = "softening switched off with it"
+    if name == "softening" and values[name] and not values.get("centrifugal"):
+        values["centrifugal"] = True
+        note = "centrifugal switched on with it"
+    return Effects(**values), note
+
+
+def _run(scene: Scene) -> tuple[SceneResult, float]:
+    t0 = time.perf_counter()
+    res = simulate(scene)
+    return res, time.perf_counter() - t0
+
+
+def _switched(scene: Scene, base: SceneResult, name: str) -> EffectShare:
+    on = getattr(scene.effects, name)
+    effects, note = _toggled(scene.effects, name)
+    res, seconds = _run(replace(scene, effects=effects))
+    if on:  # what the effect contributes
+        share = (base.rms_dynamic - res.rms_dynamic) / base.rms_dynamic
+        share_delta = base.delta_rms - res.delta_rms
+    else:  # what leaving it out costs
+        share = (res.rms_dynamic - base.rms_dynamic) / base.rms_dynamic
+        share_delta = res.delta_rms - base.delta_rms
+    method = "switched off" if on else "switched on"
+    return EffectShare(name, on, method, res.rms_dynamic, res.delta_rms, share, share_delta,
+                       seconds, res.converged, note)  # fmt: skip
+
+
+def _damping_first_order(scene: Scene, base: SceneResult) -> EffectShare:
+    runs = []
+    for sign in (+1.0, -1.0):
+        beam = replace(scene.beam, gamma=scene.beam.gamma * (1.0 + sign * GAMMA_STEP))
+        runs.append(_run(replace(scene, beam=beam)))
+    (hi, t_hi), (lo, t_lo) = runs
+    d_rms = (hi.rms_dynamic - lo.rms_dynamic) / (2.0 * GAMMA_STEP)  # gamma dRMS/dgamma
+    d_delta = (hi.delta_rms - lo.delta_rms) / (2.0 * GAMMA_STEP)
+    return EffectShare("damping", True, "first order in gamma", float("nan"), float("nan"),
+                       d_rms / base.rms_dynamic, d_delta, t_hi + t_lo,
+                       hi.converged and lo.converged,
+                       f"central differences at gamma (1 +- {GAMMA_STEP:g})")  # fmt: skip
+
+
+def _sequential(scene: Scene, base: SceneResult, budget: EffectBudget) -> None:
+    """Switch the effects that are on off in the order SEQUENCE; record each step's share."""
+    effects, previous = scene.effects, base.rms_dynamic
+    for name in SEQUENCE:
+        if not getattr(effects, name):
+            continue
+        effects = replace(effects, **{name: False})
+        res, seconds = _run(replace(scene, effects=effects))
+        budget.sequential_seconds += seconds
+        budget.sequential[name] = (previous - res.rms_dynamic) / base.rms_dynamic
+        previous = res.rms_dynamic
+    budget.rms_last = previous
+
+
+def effect_budget(scene: Scene) -> EffectBudget:
+    """Every effect's share of RMS(y_m) and of Delta RMS at this scene (module docstring).
+
+    Costs one simulation of the scene, one per effect (two for damping) and one per effect of
+    the sequence."""
+    base, seconds = _run(scene)
+    budget = EffectBudget(scene, base.rms_dynamic, base.delta_rms, seconds)
+    if base.rms_dynamic == 0.0 or not base.converged:
+        return budget  # nothing to share out: the caller reports the scene's own message
+    for f in fields(scene.effects):
+        if f.name == "damping" and scene.effects.damping:
+            budget.shares.append(_damping_first_order(scene, base))
+        elif f.name == "damping":  # switching damping on changes the scene's nature
+            continue
+        elif f.name == "softening" and not scene.effects.centrifugal:
+            continue  # softening is part of the centrifugal load
+        else:
+            budget.shares.append(_switched(scene, base, f.name))
+    _sequential(scene, base, budget)
+    return budget
