@@ -13,6 +13,7 @@ import json
 import math
 import re
 import sys
+from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
@@ -124,7 +125,9 @@ def _scene_flags(p: argparse.ArgumentParser, drive_frequency: bool) -> None:
     p.add_argument("--method", help=f"{help_text('numerics', 'method')}: "
                    f"{', '.join(param('numerics', 'method').choices)}")  # fmt: skip
     p.add_argument("--rtol", type=_finite, help=help_text("numerics", "rtol"))
-    p.add_argument("--effects", help="comma list of effects switched on, e.g. centrifugal,euler")
+    p.add_argument("--effects", help="comma list of effects switched on, e.g. centrifugal,euler"
+                   + ("; or auto[:TOL]: those whose share of RMS is >= TOL (default 0.001), "
+                      "from `rotbeam effects`" if drive_frequency else ""))  # fmt: skip
     p.add_argument("--json", action="store_true", help="print one JSON object")
 
 
@@ -199,12 +202,49 @@ def _check_threshold_flag(value: float) -> None:
         raise RotbeamInputError(f"argument --threshold: {exc}") from None
 
 
+def _auto_tol(args: argparse.Namespace) -> float | None:
+    """TOL of `--effects auto[:TOL]` (default AUTO_TOL), else None; clears args.effects."""
+    from .analysis.effect_budget import AUTO_TOL
+
+    text = args.effects or ""
+    if text != "auto" and not text.startswith("auto:"):
+        return None
+    args.effects = None
+    if text == "auto":
+        return AUTO_TOL
+    try:
+        tol = float(text[5:])
+    except ValueError:
+        tol = math.nan
+    if not 0.0 <= tol < 1.0:
+        raise RotbeamInputError(
+            f"argument --effects: {text!r}: TOL must be a number in [0, 1) (a share of RMS)"
+        )
+    return tol
+
+
+def _auto_scene(scene, tol: float):
+    """The scene with the effects its budget calls for, and what was chosen."""
+    from .analysis.effect_budget import auto_effects, effect_budget
+
+    budget = effect_budget(scene)
+    if not budget.shares:
+        raise RotbeamInputError("--effects auto: the scene has no steady state to share out")
+    auto = auto_effects(budget, tol)
+    return replace(scene, effects=auto.effects), auto.as_dict() | {
+        "budget_seconds": budget.total_seconds}  # fmt: skip
+
+
 def cmd_simulate(args: argparse.Namespace) -> int:
     from .analysis.verdict import judge
     from .report.verdict_plot import plot_verdict
     from .simulate.scene import simulate
 
+    tol = _auto_tol(args)
     scene = _scene_from_args(args)
+    auto = None
+    if tol is not None:
+        scene, auto = _auto_scene(scene, tol)
     inputs, scene = _uncertainty_inputs(args, scene)
     if args.out and Path(args.out).suffix not in (".csv", ".parquet"):
         raise RotbeamInputError(f"--out must end in .csv or .parquet, got {args.out!r}")
@@ -223,6 +263,8 @@ def cmd_simulate(args: argparse.Namespace) -> int:
         print(file=sys.stderr)
     verdict = judge(res, args.threshold)
     summary = res.summary() | verdict.as_dict() | _response(res, args)
+    if auto is not None:
+        summary["effects_auto"] = auto
     prop = _simulate_uncertainty(args, scene, res, inputs) if inputs else None
     if prop is not None:
         summary["uncertainty"] = prop.as_dict()
@@ -243,6 +285,10 @@ def cmd_simulate(args: argparse.Namespace) -> int:
             print(f"{key:16s} {summary[key]:.6g}")
         print(f"{'converged':16s} {summary['converged']} ({summary['message']})")
         print(f"{'verdict':16s} {verdict.text}")
+        if auto is not None:
+            print(f"{'effects auto':16s} kept {','.join(auto['kept'])}; dropped "
+                  f"{','.join(auto['dropped']) or 'none'} (worth {auto['dropped_share']:.2g} of "
+                  f"RMS; the budget took {auto['budget_seconds']:.3g} s)")  # fmt: skip
         print(f"{'seconds':16s} {summary['seconds']:.3g}")
         if prop is not None:
             _print_uncertainty(prop)

@@ -63,3 +63,28 @@ def test_effects_cli_json_and_bad_input():
     assert sum(out["sequential"]["shares"].values()) == pytest.approx(1.0, abs=1e-12)
     bad = subprocess.run(run[:-1] + ["-3"], capture_output=True, text=True, timeout=120)
     assert bad.returncode == 2 and bad.stderr.count("\n") == 1 and "--fd" in bad.stderr
+
+
+def test_auto_effects_tol_zero_keeps_every_effect_and_default_drops_coriolis():
+    from rotbeam.analysis.effect_budget import auto_effects
+
+    b = effect_budget(scene(5.0, 2.0))
+    every = auto_effects(b, 0.0)
+    assert every.dropped == [] and all(vars(every.effects).values())
+    auto = auto_effects(b)  # 0.1 % of RMS
+    coriolis = next(r for r in b.shares if r.effect == "coriolis")
+    assert abs(coriolis.share_rms) < 1e-3  # Sec. 2: negligible
+    assert auto.dropped == ["coriolis"] and auto.dropped_share == abs(coriolis.share_rms)
+    assert auto.effects.damping and any("damping kept" in n for n in auto.notes)
+    assert auto.effects.centrifugal and auto.effects.euler
+
+
+def test_simulate_effects_auto_cli():
+    run = [sys.executable, "-m", "rotbeam.cli", "simulate", "--omega0", "5", "--fd", "2",
+           "--N", "8", "--json", "--effects"]  # fmt: skip
+    p = subprocess.run(run + ["auto"], capture_output=True, text=True, timeout=300)
+    assert p.returncode == 0, p.stderr
+    out = json.loads(p.stdout)
+    assert "coriolis" not in out["effects"] and out["effects_auto"]["dropped"] == ["coriolis"]
+    bad = subprocess.run(run + ["auto:2"], capture_output=True, text=True, timeout=120)
+    assert bad.returncode == 2 and "[0, 1)" in bad.stderr and bad.stderr.count("\n") == 1

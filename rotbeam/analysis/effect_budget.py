@@ -172,3 +172,45 @@ def effect_budget(scene: Scene) -> EffectBudget:
             budget.shares.append(_switched(scene, base, f.name))
     _sequential(scene, base, budget)
     return budget
+
+
+#: `--effects auto` keeps the effects whose |share of RMS| is at least this (0.1 %)
+AUTO_TOL = 1e-3
+
+
+@dataclass(frozen=True)
+class AutoEffects:
+    """What `auto_effects` chose: the effects, and what the dropped ones were worth."""
+
+    effects: Effects
+    kept: list[str]
+    dropped: list[str]
+    dropped_share: float  #: sum of the dropped effects' |share of RMS|: the accuracy given up
+    tol: float
+    notes: list[str]
+
+    def as_dict(self) -> dict[str, Any]:
+        return {"kept": self.kept, "dropped": self.dropped, "dropped_share": self.dropped_share,
+                "tol": self.tol, "notes": self.notes}  # fmt: skip
+
+
+def auto_effects(budget: EffectBudget, tol: float = AUTO_TOL) -> AutoEffects:
+    """The effects whose one-at-a-time |share of RMS| is at least `tol` (an effect the scene
+    leaves out is switched on when its share is).  Damping stays on (without it there is no
+    steady state); softening keeps centrifugal on (it is part of that load).  tol = 0 keeps
+    every effect."""
+    if not tol >= 0.0:
+        raise ValueError(f"tol must be >= 0, got {tol!r}")
+    share = {s.effect: abs(s.share_rms) for s in budget.shares}
+    values = {f.name: share.get(f.name, 0.0) >= tol for f in fields(budget.scene.effects)}
+    notes = []
+    if budget.scene.effects.damping and not values["damping"]:
+        values["damping"] = True
+        notes.append("damping kept: without it there is no steady state")
+    if values.get("softening") and not values.get("centrifugal"):
+        values["centrifugal"] = True
+        notes.append("centrifugal kept: softening is part of the centrifugal load")
+    kept = [k for k, v in values.items() if v]
+    dropped = [k for k, v in values.items() if not v and k in share]
+    return AutoEffects(Effects(**values), kept, dropped, sum(share[k] for k in dropped), tol,
+                       notes)  # fmt: skip
