@@ -39,6 +39,27 @@ int_s^1 lam^2 (r_o + s') ds' = lam^2 [r_o (1 - s) + (1 - s^2)/2], which the disc
 reproduce exactly on the straight beam (tested); (iii) the velocity-squared matrix is
 W_ij sin(theta_i - theta_j), antisymmetric, where the printed S~ is symmetric; (iv) the gyroscopic
 term enters as 2 lam B Theta_t with the same B.  M is W "times" C~ element-wise, as printed.
+
+Extension (effect `extension`, not in the paper, off by default; docs/model.md derives it).  The
+centerline stretches by the local tension, r_s = (1 + eps) t(theta) with eps = N / (EA), s the
+reference arc length.  In units of EI / L^2, eps = kappa n with kappa = EI / (EA L^2) =
+(h/L)^2 / 12.  Mass per reference length, m = EI theta_s and n = int_s^1 g keep their form; the
+moment balance becomes theta_ss + (1 + eps)(-n_x sin theta + n_y cos theta) = 0.  The strain is
+quasi-static and frozen: eps(s) of the straight beam spinning steadily at lam_s, with
+lam_s^2 = lam0^2 + alpha^2/2 the period mean of lam^2.  It is exact in eps
+(`centrifugal_strain`, 14 % at the clamp at 165 rad/s for the Table 1 beam).  Then
+* P becomes P diag(1 + eps_j): element lengths ds (1 + eps).  The clamp term is
+  x0 = ds/2 (1 + eps_0), and the tip row carries ds (1 + eps_{N-1}) + ds/2 (1 + eps_N).  So x, y,
+  y_m, the centrifugal and Euler loads and W = Q P (hence M, B) are those of the stretched beam.
+  Q is unchanged: it integrates per reference length;
+* K becomes diag(1 + eps)^-1 K (dividing the moment rows by 1 + eps).
+eps depends on neither Theta nor time, so the Jacobians above hold as they stand with the
+stretched P, W, K: they stay exact.  What is left out: the O(theta) and O(theta^2) parts of the
+tension (deflection, Euler, inertia, damping; 1e-3 of n0 here), the modulation of eps by the
+drive (relative 2 a / Omega_0, entering y_m at O(eps a / Omega_0)), axial inertia and
+stretch-rate velocities (the first axial frequency, (pi/2) / sqrt(kappa) = 109 / T, is 22 times
+a 9 Hz drive), Poisson thinning of the section, shear and rotary inertia (docs/model.md
+estimates each).
 """
 
 from __future__ import annotations
