@@ -109,8 +109,9 @@ def test_verified_orbit_is_reported_from_the_collocation():
 
 def test_verification_rejects_an_inaccurate_orbit():
     """Near resonance (7 Hz) a collocation allowed a coarse harmonic tail (M = 17: 0.14 % off in
-    RMS) fails the monodromy certificate and the one-period check at ss_tol 1e-5; the run goes on time stepping at the tight
-    tolerance and lands on the time-stepped steady state, not on the collocation."""
+    RMS) fails the monodromy certificate and the one-period check at ss_tol 1e-5; the run goes on
+    time stepping at the tight tolerance and lands on the time-stepped steady state, not on the
+    collocation."""
     dl = dl_of(5.0, 7.0)
     coarse = steady_state(dl, Numerics(N=20, integrate=False, tail_tol=0.05))
     assert coarse.periodic.M == 17

@@ -59,7 +59,7 @@ def continuum_quasistatic_theta(dl: Dimensionless, taus: np.ndarray, N: int = 16
     """Quasi-static Theta on grids N/2 and N: [(grid_N/2, theta_N/2), (grid_N, theta_N)]."""
     out = []
     for n in (N // 2, N):
-        model = DiscreteElastica(n, dl.hub_ratio, dl.eta, dl.effects)
+        model = DiscreteElastica.from_dimensionless(dl, n)
         out.append((model.grid, quasistatic_series(model, dl, taus)))
     return out
 
@@ -68,7 +68,7 @@ def quasistatic_midspan(h: Any, dl: Dimensionless, N: int, taus: np.ndarray) -> 
     """Quasi-static y_m at s = 1/2: on the dynamic model's grid N ("discrete") or the Richardson
     limit of the static problem on N = 80 and 160 ("continuum", = bvp4c to 1e-5)."""
     if h.qs == "discrete":
-        model = DiscreteElastica(N, dl.hub_ratio, dl.eta, dl.effects)
+        model = DiscreteElastica.from_dimensionless(dl, N)
         th = quasistatic_series(model, dl, taus)
         return midspan_measure(model.grid, th, 0.5, h.measure, dl, taus)
     (g1, t1), (g2, t2) = continuum_quasistatic_theta(dl, taus)
@@ -83,7 +83,7 @@ def dynamic_model(h: Any, dl: Dimensionless, N: int) -> tuple[DiscreteElastica, 
     eff = replace(dl, eta=dl.eta + 2.0 * abs(dl.lam0)) if h.coriolis_ny else dl
     if h.model:
         return PrintedElastica(N, dl.hub_ratio, eff.eta, dl.effects, h.model), eff
-    return DiscreteElastica(N, dl.hub_ratio, eff.eta, dl.effects), eff
+    return DiscreteElastica.from_dimensionless(dl, N, eff.eta), eff
 
 
 def _ours_orbit(dl: Dimensionless, N: int, m: int, state: dict, guess=None):

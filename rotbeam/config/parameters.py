@@ -73,6 +73,9 @@ SECTIONS: dict[str, dict[str, Param]] = {
         "euler": _bool(True, "Euler load of the angular acceleration"),
         "coriolis": _bool(False, "Coriolis load (negligible, Sec. 2; off in the paper)"),
         "damping": _bool(True, "viscous damping gamma"),
+        "extension": _bool(
+            False, "axial stretch by the centrifugal tension, strain N/(EA) (off in the paper)"
+        ),  # fmt: skip
     },
     "numerics": {
         "N": _int(40, "grid intervals", 3, 2000),

@@ -39,22 +39,65 @@ int_s^1 lam^2 (r_o + s') ds' = lam^2 [r_o (1 - s) + (1 - s^2)/2], which the disc
 reproduce exactly on the straight beam (tested); (iii) the velocity-squared matrix is
 W_ij sin(theta_i - theta_j), antisymmetric, where the printed S~ is symmetric; (iv) the gyroscopic
 term enters as 2 lam B Theta_t with the same B.  M is W "times" C~ element-wise, as printed.
+
+Extension (effect `extension`, not in the paper, off by default; docs/model.md derives it).  The
+centerline stretches by the local tension, r_s = (1 + eps) t(theta) with eps = N / (EA), s the
+reference arc length.  In units of EI / L^2, eps = kappa n with kappa = EI / (EA L^2) =
+(h/L)^2 / 12.  Mass per reference length, m = EI theta_s and n = int_s^1 g keep their form; the
+moment balance becomes theta_ss + (1 + eps)(-n_x sin theta + n_y cos theta) = 0.  The strain is
+quasi-static and frozen: eps(s) of the straight beam spinning steadily at lam_s, with
+lam_s^2 = lam0^2 + alpha^2/2 the period mean of lam^2.  It is exact in eps
+(`centrifugal_strain`, 14 % at the clamp at 165 rad/s for the Table 1 beam).  Then
+* P becomes P diag(1 + eps_j): element lengths ds (1 + eps).  The clamp term is
+  x0 = ds/2 (1 + eps_0), and the tip row carries ds (1 + eps_{N-1}) + ds/2 (1 + eps_N).  So x, y,
+  y_m, the centrifugal and Euler loads and W = Q P (hence M, B) are those of the stretched beam.
+  Q is unchanged: it integrates per reference length;
+* K becomes diag(1 + eps)^-1 K (dividing the moment rows by 1 + eps).
+eps depends on neither Theta nor time, so the Jacobians above hold as they stand with the
+stretched P, W, K: they stay exact.  What is left out: the O(theta) and O(theta^2) parts of the
+tension (deflection, Euler, inertia, damping; 1e-3 of n0 here), the modulation of eps by the
+drive (relative 2 a / Omega_0, entering y_m at O(eps a / Omega_0)), axial inertia and
+stretch-rate velocities (the first axial frequency, (pi/2) / sqrt(kappa) = 109 / T, is 22 times
+a 9 Hz drive), Poisson thinning of the section, shear and rotary inertia (docs/model.md
+estimates each).
 """
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
 from scipy.linalg import lu_factor, lu_solve
 
+from ..config.errors import RotbeamInputError
 from ..config.parameters import check_value
-from .params import Effects
+from .params import Dimensionless, Effects
 
 
 def check_N(N: int) -> int:
     """The number of grid intervals, checked against the registry (numerics.N)."""
     return check_value("numerics", "N", N)
+
+
+def centrifugal_strain(s, hub_ratio: float, kappa: float, lam: float) -> np.ndarray:
+    """Axial strain eps(s) of the straight extensible beam spinning steadily at lam, exact.
+
+    n' = -lam^2 (r_o + x), x' = 1 + eps, eps = kappa n, n(1) = 0, x(0) = 0 give
+    n'' + k^2 n = -lam^2 with k = |lam| sqrt(kappa), whose solution is
+    1 + eps = [cos(k s) + k r_o sin(k (1 - s))] / cos(k), written below without cancellation;
+    eps = kappa lam^2 [r_o (1 - s) + (1 - s^2)/2] (1 + O(k^2)).  No tensile equilibrium for
+    k >= pi/2 (the stretch runs away).
+    """
+    k = abs(float(lam)) * math.sqrt(kappa)
+    if not k < 0.5 * math.pi:
+        raise RotbeamInputError(
+            f"effects.extension: no stretched equilibrium at lam sqrt(kappa) = {k:.4g} >= pi/2 "
+            f"(lam = Omega T = {lam:.4g}, kappa = (h/L)^2/12 = {kappa:.4g})"
+        )
+    s = np.asarray(s, dtype=float)
+    a, b = 0.5 * k * (1.0 + s), 0.5 * k * (1.0 - s)
+    return (2.0 * np.sin(a) * np.sin(b) + k * hub_ratio * np.sin(2.0 * b)) / math.cos(k)
 
 
 @dataclass(frozen=True)
@@ -69,9 +112,12 @@ class Grid:
     W: np.ndarray  #: (N-1, N-1) = Q P
     K: np.ndarray  #: (N-1, N-1) bending stiffness
     mid: int  #: index of the node used for y_m (or -1: interpolate)
+    x0: float  #: the clamp node's share of every x: ds/2 (1 + eps_0)
+    strain: np.ndarray | None = None  #: eps at nodes 0..N (extension), None: inextensible
 
     @classmethod
-    def build(cls, N: int) -> Grid:
+    def build(cls, N: int, strain: np.ndarray | None = None) -> Grid:
+        """The grid; with `strain` (eps at nodes 0..N) the element lengths are ds (1 + eps)."""
         N = check_N(N)
         n = N - 1
         ds = 1.0 / N
@@ -90,11 +136,20 @@ class Grid:
         K = (2.0 * np.eye(n) - np.eye(n, k=1) - np.eye(n, k=-1)) / ds**2
         K[-1, -1] = 1.0 / ds**2
         mid = N // 2 - 1 if N % 2 == 0 else -1
-        return cls(N=N, ds=ds, s=s, P=P, Q=Q, W=Q @ P, K=K, mid=mid)
+        x0 = ds / 2
+        if strain is not None:
+            strain = np.array(strain, dtype=float)
+            if strain.shape != (N + 1,):
+                raise ValueError(f"strain must have shape ({N + 1},), got {strain.shape}")
+            x0 = x0 * (1.0 + strain[0])
+            P = P * (1.0 + strain[1:N])[None, :]
+            P[N - 1, n - 1] = ds * (1.0 + strain[N - 1]) + ds / 2 * (1.0 + strain[N])
+            K = K / (1.0 + strain[1:N])[:, None]
+        return cls(N=N, ds=ds, s=s, P=P, Q=Q, W=Q @ P, K=K, mid=mid, x0=x0, strain=strain)
 
     def positions(self, theta: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """x, y at nodes 1..N (relative to the clamp); theta has shape (N-1,) or (N-1, m)."""
-        x = self.ds / 2 + self.P @ np.cos(theta)
+        x = self.x0 + self.P @ np.cos(theta)
         y = self.P @ np.sin(theta)
         return x, y
 
@@ -120,18 +175,42 @@ class Grid:
 class DiscreteElastica:
     """Right-hand side, Jacobians and static residual of the discrete model on one grid."""
 
-    def __init__(self, N: int, hub_ratio: float, eta: float, effects: Effects | None = None):
-        self.grid = Grid.build(N)
-        self.n = self.grid.N - 1
+    def __init__(
+        self,
+        N: int,
+        hub_ratio: float,
+        eta: float,
+        effects: Effects | None = None,
+        kappa: float = 0.0,
+        lam_stretch: float = 0.0,
+    ):
+        """`kappa` = (h/L)^2 / 12 and `lam_stretch` (the rotation whose centrifugal tension
+        stretches the beam) are read only with `effects.extension` (and `centrifugal`)."""
         self.hub_ratio = float(hub_ratio)
         self.effects = effects if effects is not None else Effects()
+        strain = None
+        if self.effects.extension and self.effects.centrifugal:
+            if not (math.isfinite(kappa) and kappa > 0):
+                raise RotbeamInputError(
+                    f"effects.extension needs kappa = (h/L)^2 / 12 > 0, got {kappa!r}"
+                )
+            s = np.arange(N + 1) / check_N(N)
+            strain = centrifugal_strain(s, self.hub_ratio, kappa, lam_stretch)
+        self.grid = Grid.build(N, strain)
+        self.n = self.grid.N - 1
         self.eta = float(eta) if self.effects.damping else 0.0
+
+    @classmethod
+    def from_dimensionless(cls, dl: Dimensionless, N: int, eta: float | None = None):
+        """The model of one dimensionless scene (`eta` overrides the scene's damping)."""
+        eta = dl.eta if eta is None else eta
+        return cls(N, dl.hub_ratio, eta, dl.effects, dl.kappa, dl.lam_stretch)
 
     # --- loads ------------------------------------------------------------------------------
     def _loads(self, c, s, lam, lam_dot):
         """Nodal load parts of F_x, F_y (nodes 1..N) and nodal x, y."""
         g = self.grid
-        x = g.ds / 2 + g.P @ c
+        x = g.x0 + g.P @ c
         y = g.P @ s
         fx = np.zeros_like(x)
         fy = np.zeros_like(y)

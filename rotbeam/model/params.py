@@ -166,8 +166,12 @@ class Drive:
 class Effects:
     """Which loads enter the model.  Terms that are off are not computed.
 
-    Defaults follow the paper: Coriolis off (Sec. 2), everything else on.  `softening` is the
-    in-plane centrifugal softening, the delta C y term of Eq. (EOM2); it needs `centrifugal`.
+    Defaults follow the paper: Coriolis off (Sec. 2), the inextensible beam (`extension` off),
+    everything else on.  `softening` is the in-plane centrifugal softening, the delta C y term of
+    Eq. (EOM2); it needs `centrifugal`.  `extension` stretches the centerline by the centrifugal
+    tension, strain N/(EA) (not in the paper; see `rotbeam.model.elastica` and docs/model.md); it
+    needs `centrifugal` (without it there is no tension to stretch the beam) and the slenderness
+    h/L of `Dimensionless`.
     """
 
     centrifugal: bool = default("effects", "centrifugal")
@@ -175,6 +179,7 @@ class Effects:
     euler: bool = default("effects", "euler")
     coriolis: bool = default("effects", "coriolis")
     damping: bool = default("effects", "damping")
+    extension: bool = default("effects", "extension")
 
     def __post_init__(self) -> None:
         check_fields(self, "effects")
@@ -212,6 +217,11 @@ class Dimensionless:
     """The dimensionless problem: everything the discrete model needs, nothing else.
 
     Two scenes with equal `Dimensionless` are the same numerical problem, whatever their size.
+
+    `slenderness` h/L is a sixth group that only the `extension` effect reads: the axial
+    compliance in units of the bending one is EI / (EA L^2) = (h/L)^2 / 12 (`kappa`).
+    `from_physical` fills it only when `extension` is on (None otherwise), so scenes without
+    extension compare equal whatever their thickness, as before.
     """
 
     hub_ratio: float  #: r_o = R_o / L
@@ -220,6 +230,7 @@ class Dimensionless:
     alpha: float  #: a T
     omega: float  #: 2 pi f_d T
     effects: Effects = field(default_factory=Effects)
+    slenderness: float | None = None  #: h / L (read by `extension` only)
 
     def __post_init__(self) -> None:
         check_nonnegative("hub_ratio", self.hub_ratio)
@@ -227,19 +238,41 @@ class Dimensionless:
         check_finite("lam0", self.lam0)
         check_nonnegative("alpha", self.alpha)
         check_positive("omega", self.omega)
+        if self.slenderness is not None:
+            check_positive("slenderness", self.slenderness)
+        if self.effects.extension and self.slenderness is None:
+            raise RotbeamInputError(
+                "effects.extension needs the slenderness h/L (Dimensionless.slenderness)"
+            )
+
+    @property
+    def kappa(self) -> float:
+        """EI / (EA L^2) = (h/L)^2 / 12, the strain per unit dimensionless tension (0 without
+        `extension`: the inextensible beam)."""
+        if not self.effects.extension:
+            return 0.0
+        return self.slenderness**2 / 12.0
+
+    @property
+    def lam_stretch(self) -> float:
+        """The rotation whose steady centrifugal tension stretches the beam: the period mean of
+        lam^2, lam0^2 + alpha^2 / 2, as a rate (see `rotbeam.model.elastica`, extension)."""
+        return math.sqrt(self.lam0 * self.lam0 + 0.5 * self.alpha * self.alpha)
 
     @classmethod
     def from_physical(
         cls, beam: Beam, drive: Drive, effects: Effects | None = None
     ) -> Dimensionless:
         T = beam.T
+        effects = effects if effects is not None else Effects()
         return cls(
             hub_ratio=beam.hub_ratio,
             eta=beam.eta,
             lam0=drive.omega0 * T,
             alpha=drive.amplitude * T,
             omega=2.0 * math.pi * drive.f_d * T,
-            effects=effects if effects is not None else Effects(),
+            effects=effects,
+            slenderness=beam.h / beam.L if effects.extension else None,
         )
 
     @property

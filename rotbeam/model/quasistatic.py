@@ -17,6 +17,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.integrate import solve_bvp
 
+from ..config.errors import RotbeamInputError
 from .elastica import DiscreteElastica
 from .params import Dimensionless, Effects
 
@@ -220,6 +221,8 @@ def solve_static_bvp(
     eps (the linear tip angle under the Euler load) so that `tol` is relative to the deflection.
     """
     ef = effects if effects is not None else Effects()
+    if ef.extension:
+        raise RotbeamInputError("solve_static_bvp is the inextensible elastica: no `extension`")
     lam2 = lam * lam if ef.centrifugal else 0.0
     soft = lam2 if (ef.centrifugal and ef.softening) else 0.0
     ld = lam_dot if ef.euler else 0.0

@@ -12,7 +12,7 @@ import math
 import numpy as np
 import pandas as pd
 
-from .elastica import Grid
+from .elastica import DiscreteElastica
 
 
 def rotation_angle(omega0: float, amplitude: float, f_d: float, t: np.ndarray) -> np.ndarray:
@@ -23,7 +23,7 @@ def rotation_angle(omega0: float, amplitude: float, f_d: float, t: np.ndarray) -
 def shapes_over_period(result, frames: int | None = None) -> pd.DataFrame:
     """One row per node and frame: s, rotating-frame and lab-frame coordinates (units of L)."""
     scene = result.scene
-    grid = Grid.build(scene.numerics.N)
+    grid = DiscreteElastica.from_dimensionless(scene.dimensionless, scene.numerics.N).grid
     r_o = scene.beam.hub_ratio
     d = scene.drive
     rows = []

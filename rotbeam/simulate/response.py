@@ -123,7 +123,7 @@ def response_of(
     t0 = time.perf_counter()
     N = N or scene.numerics.N
     dl = scene.dimensionless
-    model = DiscreteElastica(N, dl.hub_ratio, dl.eta, dl.effects)
+    model = DiscreteElastica.from_dimensionless(dl, N)
     n, P, T = model.n, dl.period, scene.beam.T
     deadline = t0 + max_seconds
     rhs = first_order_rhs(model, dl, math.inf)  # the budget is checked between periods

@@ -116,7 +116,7 @@ def stability_columns(dyn: SteadyState) -> dict[str, Any]:
 def quasistatic_midspan(
     dl: Dimensionless, N: int, taus: np.ndarray
 ) -> tuple[np.ndarray, np.ndarray]:
-    model = DiscreteElastica(N, dl.hub_ratio, dl.eta, dl.effects)
+    model = DiscreteElastica.from_dimensionless(dl, N)
     theta = quasistatic_series(model, dl, taus)
     return theta, np.atleast_1d(model.grid.midspan(theta))
 

@@ -49,7 +49,7 @@ class Collocation:
 
     def __init__(self, dl: Dimensionless, N: int, M: int):
         self.dl = dl
-        self.model = DiscreteElastica(N, dl.hub_ratio, dl.eta, dl.effects)
+        self.model = DiscreteElastica.from_dimensionless(dl, N)
         self.M = M
         self.tau = np.arange(M) * dl.period / M
         self.D = fourier_diff_matrix(M, dl.period)

@@ -488,7 +488,7 @@ def steady_state(
     """
     num = numerics if numerics is not None else Numerics()
     t0 = time.perf_counter()
-    model = DiscreteElastica(num.N, dl.hub_ratio, dl.eta, dl.effects)
+    model = DiscreteElastica.from_dimensionless(dl, num.N)
     z, periodic = initial_state(model, dl, num.start, num.tail_tol, guess)
     if not num.integrate and periodic is not None:
         return _from_collocation(model, dl, num, periodic, t0)

@@ -1,0 +1,207 @@
+"""The `extension` effect (axial stretch by the centrifugal tension) against independent forms:
+a boundary-value solve and the first-order integral of N/(EA) for the straight beam, a Ritz
+solution of the stretched beam's energy for its first frequency, finite differences for the
+Jacobian, and the code before the effect existed for every result with it off."""
+
+import math
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+from numpy.polynomial import Chebyshev, Legendre, Polynomial
+from scipy.integrate import solve_bvp
+
+from rotbeam.model.elastica import DiscreteElastica, centrifugal_strain
+from rotbeam.model.modes import dimensionless_frequencies
+from rotbeam.model.params import Beam, Dimensionless, Drive, Effects
+
+HERE = Path(__file__).parent
+BEAM = Beam()
+KAPPA = (BEAM.h / BEAM.L) ** 2 / 12.0  # 2.08e-4 for h/L = 0.05
+HUB = BEAM.hub_ratio
+ON = Effects(extension=True)
+
+
+def lam_of(omega):
+    return omega * BEAM.T
+
+
+# --- (3) off: the code before the effect, bit for bit ------------------------------------------
+def test_extension_off_is_bit_identical_to_the_inextensible_code():
+    """Outputs on fixed random states equal those saved from the code before `extension`
+    existed (commit 642035f, tests/make_elastica_reference.py; same machine and BLAS)."""
+    sys.path.insert(0, str(HERE))
+    try:
+        from make_elastica_reference import reference
+    finally:
+        sys.path.remove(str(HERE))
+    saved = np.load(HERE / "data" / "elastica_inextensible.npz")
+    now = reference()
+    assert sorted(saved) == sorted(now)
+    for key in saved:
+        np.testing.assert_array_equal(now[key], saved[key], err_msg=key)
+    # extension on without a centrifugal load has no tension: the inextensible model again
+    m = DiscreteElastica(9, 2.875, 0.143, Effects(centrifugal=False, extension=True), 1e-2, 3.0)
+    assert m.grid.strain is None
+
+
+def test_extension_off_benchmark_rms_unchanged():
+    """RMS(y_m) at Omega_0 = 5 rad/s, f_d = 2 Hz, N = 12 as main's code gives it (to the bit)."""
+    from rotbeam.simulate.scene import build_scene, simulate
+
+    r = simulate(build_scene({"drive": {"omega0": 5.0, "f_d": 2.0}, "numerics": {"N": 12}}))
+    assert r.rms_dynamic == 0.010556175036492598
+    assert r.rms_quasistatic == 0.009654891687129971
+
+
+def test_dimensionless_carries_slenderness_only_with_extension():
+    drive = Drive(30.0, 1.0, 5.0)
+    off = Dimensionless.from_physical(BEAM, drive)
+    on = Dimensionless.from_physical(BEAM, drive, ON)
+    assert off.slenderness is None and off.kappa == 0.0
+    assert on.slenderness == BEAM.h / BEAM.L and on.kappa == pytest.approx(KAPPA, rel=1e-15)
+    assert on.lam_stretch == pytest.approx(math.hypot(on.lam0, on.alpha / math.sqrt(2)))
+    thicker = Beam(h=0.003)
+    assert Dimensionless.from_physical(thicker, drive) != off  # (T differs: a different problem)
+    assert Effects.from_list("centrifugal,extension").extension
+
+
+# --- (1) the straight spinning beam: total stretch and strain ----------------------------------
+def _bvp_strain(hub, kappa, lam):
+    """eps(s) and x(1) - 1 by collocation of n' = -lam^2 (r_o + x), x' = 1 + kappa n."""
+
+    def f(s, u):
+        return np.vstack([-(lam**2) * (hub + u[1]), 1.0 + kappa * u[0]])
+
+    def bc(ua, ub):
+        return np.array([ua[1], ub[0]])
+
+    s = np.linspace(0, 1, 11)
+    sol = solve_bvp(f, bc, s, np.vstack([np.zeros_like(s), s]), tol=1e-12, max_nodes=100000)
+    assert sol.success
+    return (lambda t: kappa * sol.sol(t)[0]), sol.sol(1.0)[1] - 1.0
+
+
+@pytest.mark.parametrize("omega", [30.0, 60.0, 165.0])
+def test_straight_beam_stretch_against_closed_form_and_bvp(omega):
+    """Tip displacement x_N - 1 of the straight beam spinning at Omega against (a) the
+    first-order closed form int_0^1 N/(EA) ds = kappa lam^2 (r_o/2 + 1/3) (agreeing to
+    O(strain^2)) and (b) a boundary-value solve of the stretched beam (to the grid's O(ds^2));
+    the model's own tension on the stretched grid reproduces the strain it was built with."""
+    lam, N = lam_of(omega), 40
+    m = DiscreteElastica(N, HUB, 0.0, ON, KAPPA, lam)
+    z = np.zeros(m.n)
+    x, y = m.grid.positions(z)
+    np.testing.assert_array_equal(y, 0.0)
+    stretch = x[-1] - 1.0
+    first_order = KAPPA * lam**2 * (HUB / 2 + 1 / 3)
+    eps_clamp = KAPPA * lam**2 * (HUB + 0.5)
+    eps, exact = _bvp_strain(HUB, KAPPA, lam)
+    # (a) first order: the stretched positions add tension, relative O(strain)
+    assert 0 < stretch - first_order < 0.5 * eps_clamp * first_order
+    # (b) the exact stretch and the nodal strains
+    assert stretch == pytest.approx(exact, rel=2e-4)
+    s_nodes = np.arange(N + 1) / N
+    np.testing.assert_allclose(m.grid.strain, eps(s_nodes), rtol=1e-8, atol=1e-12)
+    # the model's tension of the stretched straight beam (Q of lam^2 (r_o + x)) is EA eps
+    nx, ny = m.tension(z, z, z, lam, 0.0)
+    np.testing.assert_allclose(KAPPA * nx, m.grid.strain[1:N], rtol=2e-4)
+    # the issue's figures: 0.5 %, 2 % and 14 % at the clamp
+    assert m.grid.strain[0] == pytest.approx(eps_clamp, rel=0.5 * eps_clamp + 1e-3)
+
+
+def test_strain_has_no_equilibrium_beyond_the_axial_limit():
+    from rotbeam.config.errors import RotbeamInputError
+
+    with pytest.raises(RotbeamInputError, match="pi/2"):
+        centrifugal_strain(np.linspace(0, 1, 5), HUB, KAPPA, 0.5 * math.pi / math.sqrt(KAPPA))
+
+
+# --- (2) the first frequency of the stretched spinning beam ------------------------------------
+def _ritz_frequency(hub, kappa, lam, softening, K=10):
+    """First frequency of the continuum energy of the stretched beam (reference arc s):
+    V = 1/2 int theta_s^2 + 1/2 int n (1 + eps) theta^2 - sigma lam^2/2 int y^2, T = 1/2 int y_t^2,
+    y = int_0^s (1 + eps) theta, n = eps / kappa; Ritz on theta = s P_k(2 s - 1), k < K."""
+    eps = Chebyshev.interpolate(
+        lambda s: centrifugal_strain(s, hub, kappa, lam) if kappa else 0 * s, 30, domain=[0, 1]
+    ).convert(kind=Polynomial)
+    s, w = np.polynomial.legendre.leggauss(80)
+    s, w = 0.5 * (s + 1), 0.5 * w
+    basis = [
+        Polynomial([0, 1]) * Legendre.basis(k, domain=[0, 1]).convert(kind=Polynomial)
+        for k in range(K)
+    ]
+    th = np.array([b(s) for b in basis])
+    dth = np.array([b.deriv()(s) for b in basis])
+    ys = np.array([((1 + eps) * b).integ(lbnd=0)(s) for b in basis])
+    e = eps(s)
+    n = e / kappa if kappa else lam**2 * (hub * (1 - s) + (1 - s**2) / 2)
+    stiff = (dth * w) @ dth.T + (th * (w * n * (1 + e))) @ th.T
+    mass = (ys * w) @ ys.T
+    if softening:
+        stiff = stiff - lam**2 * mass
+    import scipy.linalg as sla
+
+    return math.sqrt(sla.eigh(stiff, mass, eigvals_only=True)[0])
+
+
+@pytest.mark.parametrize("omega", [60.0, 165.0])
+@pytest.mark.parametrize("softening", [False, True])
+def test_first_frequency_of_the_stretched_beam_against_ritz(omega, softening):
+    """The model's first frequency with extension (Richardson from N = 40, 80) against a Ritz
+    solution of the stretched continuum (10 polynomials): the same shift to 0.1 %, and the shift
+    has the sign and size of the uniform-stretch estimate (a longer, lighter-per-length beam:
+    w_b^2 (1 + eps)^-3, hub ratio r_o / (1 + eps)) with eps between the mean and clamp strains."""
+    lam = lam_of(omega)
+
+    def model(kappa):
+        w40, w80 = (
+            dimensionless_frequencies(lam, HUB, 1, N, softening, kappa)[0] for N in (40, 80)
+        )
+        return (4 * w80 - w40) / 3
+
+    w_in, w_ex = model(0.0), model(KAPPA)
+    r_in, r_ex = (_ritz_frequency(HUB, k, lam, softening) for k in (0.0, KAPPA))
+    assert w_in == pytest.approx(r_in, rel=2e-5)  # the Ritz solution is right without stretch
+    assert w_ex == pytest.approx(r_ex, rel=2e-5)
+    shift, ritz_shift = w_ex / w_in - 1, r_ex / r_in - 1
+    assert shift < 0
+    assert shift == pytest.approx(ritz_shift, rel=1e-3)
+
+    # uniform-stretch estimate; S_1 of the hub linear in r_o (flapwise 1.1933 + 1.5710 r_o)
+    def uniform(e):
+        sig = 1.0 if softening else 0.0
+        w2 = 1.8751040687119611**4 / (1 + e) ** 3 + (1.1933 + 1.5710 * HUB / (1 + e) - sig) * lam**2
+        return math.sqrt(w2)
+
+    eps_mean = KAPPA * lam**2 * (HUB / 2 + 1 / 3)
+    eps_clamp = KAPPA * lam**2 * (HUB + 0.5)
+    base = uniform(0.0)
+    bounds = sorted([uniform(eps_mean) / base - 1, uniform(eps_clamp) / base - 1])
+    assert bounds[0] <= shift <= bounds[1], (shift, bounds)
+
+
+# --- (4) the Jacobian with extension -----------------------------------------------------------
+@pytest.mark.parametrize("coriolis", [False, True])
+def test_first_order_jacobian_with_extension_matches_finite_differences(coriolis):
+    kappa, lam_s = 0.01, 4.0  # a strong stretch (up to ~50 %) so that errors would show
+    m = DiscreteElastica(12, 2.875, 0.14, Effects(coriolis=coriolis, extension=True), kappa, lam_s)
+    assert m.grid.strain.max() > 0.3
+    rng = np.random.default_rng(2)
+    th, tt = 0.5 * rng.normal(size=m.n), rng.normal(size=m.n)
+    z = np.concatenate([th, tt])
+
+    def F(z):
+        a, _, _ = m.acceleration(z[: m.n], z[m.n :], 1.3, 0.7)
+        return np.concatenate([z[m.n :], a])
+
+    J = m.first_order_jacobian(th, tt, 1.3, 0.7)
+    h = 1e-6
+    Jn = np.array([(F(z + h * e) - F(z - h * e)) / (2 * h) for e in np.eye(2 * m.n)]).T
+    np.testing.assert_allclose(J, Jn, rtol=1e-6, atol=1e-6 * np.abs(Jn).max())
+    # and it is not the inextensible one
+    m0 = DiscreteElastica(12, 2.875, 0.14, Effects(coriolis=coriolis))
+    assert np.abs(m0.first_order_jacobian(th, tt, 1.3, 0.7) - J).max() > 1e-2 * np.abs(J).max()
+    rows, jac = m.load_torque_rows(th[None], [1.3], [0.7], jacobian=True)
+    np.testing.assert_allclose(jac[0], m.load_torque_jacobian(th, 1.3, 0.7), atol=1e-13)
