@@ -26,7 +26,7 @@ def test_euler_load_is_the_forcing_and_sequential_shares_add_to_one():
     one-at-a-time share is 1 and the sequential shares, which end with it, sum to 1."""
     b = effect_budget(scene(5.0, 2.0))
     rows = {r.effect: r for r in b.shares}
-    assert set(rows) == {"centrifugal", "softening", "euler", "coriolis", "damping"}
+    assert set(rows) == {"centrifugal", "softening", "euler", "coriolis", "damping", "extension"}
     assert rows["euler"].rms == 0.0 and rows["euler"].share_rms == 1.0
     assert rows["coriolis"].method == "switched on" and not rows["coriolis"].on_in_scene
     assert rows["damping"].method == "first order in gamma"
@@ -73,8 +73,10 @@ def test_auto_effects_tol_zero_keeps_every_effect_and_default_drops_coriolis():
     assert every.dropped == [] and all(vars(every.effects).values())
     auto = auto_effects(b)  # 0.1 % of RMS
     coriolis = next(r for r in b.shares if r.effect == "coriolis")
-    assert abs(coriolis.share_rms) < 1e-3  # Sec. 2: negligible
-    assert auto.dropped == ["coriolis"] and auto.dropped_share == abs(coriolis.share_rms)
+    stretch = next(r for r in b.shares if r.effect == "extension")
+    assert abs(coriolis.share_rms) < 1e-3 and abs(stretch.share_rms) < 1e-3  # at 5 rad/s
+    assert auto.dropped == ["coriolis", "extension"]
+    assert auto.dropped_share == abs(coriolis.share_rms) + abs(stretch.share_rms)
     assert auto.effects.damping and any("damping kept" in n for n in auto.notes)
     assert auto.effects.centrifugal and auto.effects.euler
 
@@ -85,6 +87,7 @@ def test_simulate_effects_auto_cli():
     p = subprocess.run(run + ["auto"], capture_output=True, text=True, timeout=300)
     assert p.returncode == 0, p.stderr
     out = json.loads(p.stdout)
-    assert "coriolis" not in out["effects"] and out["effects_auto"]["dropped"] == ["coriolis"]
+    assert "coriolis" not in out["effects"]
+    assert out["effects_auto"]["dropped"] == ["coriolis", "extension"]
     bad = subprocess.run(run + ["auto:2"], capture_output=True, text=True, timeout=120)
     assert bad.returncode == 2 and "[0, 1)" in bad.stderr and bad.stderr.count("\n") == 1

@@ -35,7 +35,7 @@ from ..simulate.scene import Scene, SceneResult, simulate
 GAMMA_STEP = 0.01
 
 #: the order in which the sequential shares switch the effects off (damping is never switched)
-SEQUENCE = ("coriolis", "softening", "centrifugal", "euler")
+SEQUENCE = ("extension", "coriolis", "softening", "centrifugal", "euler")
 
 
 @dataclass(frozen=True)
