@@ -153,11 +153,11 @@ def _correct(problem: BranchProblem, y_pred, t, w, tol: float, maxiter: int = 8)
     y = y_pred.copy()
     for it in range(1, maxiter + 1):
         x, p = y[:-1], y[-1]
-        R = problem.residual(x, p)
-        G = np.append(R, np.dot(t * w * w, y - y_pred))
-        A = np.vstack([np.column_stack([problem.jacobian(x, p), problem.dR_dp(x, p)]), t * w * w])
-        try:
-            dy = sla.solve(A, -G)
+        try:  # a corrector that wanders out of the problem's range (e.g. p <= 0) has failed
+            R = problem.residual(x, p)
+            G = np.append(R, np.dot(t * w * w, y - y_pred))
+            J = np.column_stack([problem.jacobian(x, p), problem.dR_dp(x, p)])
+            dy = sla.solve(np.vstack([J, t * w * w]), -G)
         except (sla.LinAlgError, ValueError):
             return None, maxiter
         y = y + dy

@@ -82,6 +82,9 @@ class SteadyState:
     history: list[float] = field(default_factory=list)  #: transient bound per period
     periodic: PeriodicResult | None = None  #: the collocation result, if one was made
     floquet: FloquetResult | None = None  #: multipliers of the reported orbit (else: collocated)
+    #: (Theta, Theta_t) after the last whole period of the march (None without a march): the
+    #: start of the next point of a sweep that follows the beam rather than the orbit
+    state: np.ndarray | None = None
 
 
 def period_samples(dl: Dimensionless, k0: int, periods: int, m: int) -> np.ndarray:
@@ -220,6 +223,7 @@ def certified(
         seconds=time.perf_counter() - t0,
         periodic=periodic,
         floquet=fl,
+        state=np.concatenate([periodic.theta[:, 0], periodic.theta_t[:, 0]]),
     )
     return state, ""
 
@@ -477,6 +481,7 @@ def steady_state(
     progress: Callable[[int, float], None] | None = None,
     response_scale: float | None = None,
     guess: np.ndarray | None = None,
+    state0: np.ndarray | None = None,
 ) -> SteadyState:
     """Integrate from `numerics.start` until the periodic steady state, then sample it.
 
@@ -484,12 +489,20 @@ def steady_state(
     march period by period to the steady state (`march`, with a `PeriodStepper`), the RMS window
     (`rms_window`).  With numerics.integrate = False (and start = "periodic") the collocation
     result is returned as it is: fastest, but not checked by time stepping.  `guess` (M, N-1)
-    seeds the collocation (continuation along a sweep).
+    seeds the collocation (continuation along a sweep).  `state0` (Theta, Theta_t) at tau = 0,
+    if given, is the initial state instead of `numerics.start` (no collocation: time stepping
+    from where the beam is, e.g. the previous drive frequency's final `state` in a sweep that
+    shows hysteresis).
     """
     num = numerics if numerics is not None else Numerics()
     t0 = time.perf_counter()
     model = DiscreteElastica.from_dimensionless(dl, num.N)
-    z, periodic = initial_state(model, dl, num.start, num.tail_tol, guess)
+    if state0 is not None:
+        z, periodic = np.array(state0, dtype=float), None
+        if z.shape != (2 * model.n,):
+            raise ValueError(f"state0 must have shape ({2 * model.n},), got {z.shape}")
+    else:
+        z, periodic = initial_state(model, dl, num.start, num.tail_tol, guess)
     if not num.integrate and periodic is not None:
         return _from_collocation(model, dl, num, periodic, t0)
     orbit_fl = orbit_stability(model, dl, periodic)  # an unstable orbit is left, not verified
@@ -523,6 +536,7 @@ def steady_state(
         history=run.history,
         periodic=periodic,
         floquet=fl,
+        state=run.z.copy(),
     )
 
 
