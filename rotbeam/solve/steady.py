@@ -82,8 +82,8 @@ class SteadyState:
     history: list[float] = field(default_factory=list)  #: transient bound per period
     periodic: PeriodicResult | None = None  #: the collocation result, if one was made
     floquet: FloquetResult | None = None  #: multipliers of the reported orbit (else: collocated)
-    #: (Theta, Theta_t) after the last whole period of the march (None without a march): the
-    #: start of the next point of a sweep that follows the beam rather than the orbit
+    #: (Theta, Theta_t) after the last whole period of the march, or a certified orbit's start
+    #: (None otherwise): the start of the next point of a sweep that follows the beam
     state: np.ndarray | None = None
 
 
