@@ -94,3 +94,12 @@ def quick_run(tmp_path_factory) -> Path:
     # the workflow profile is read (greedy job selection: see profiles/default/config.yaml)
     assert "Using workflow specific profile profiles/default" in p.stderr, p.stderr[:3000]
     return work
+
+
+def pytest_collection_modifyitems(config, items) -> None:
+    """With pytest-xdist (`-n 2 --dist loadgroup`, README's test command): a test file runs on
+    one worker (its module fixtures are built once), and every test of the quick run shares one
+    worker (the run is built once)."""
+    for item in items:
+        group = "quick_run" if "quick_run" in item.fixturenames else item.module.__name__
+        item.add_marker(pytest.mark.xdist_group(group))

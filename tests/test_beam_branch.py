@@ -66,6 +66,7 @@ def test_residual_is_zero_only_at_the_orbit_of_its_own_frequency():
     assert pr.floquet(x, 6.0).stable
 
 
+@pytest.mark.slow
 def test_time_stepping_from_a_given_state_follows_the_beam():
     """steady_state(state0=...) starts where it is told: from the previous run's final state it
     is steady within a few periods at the same RMS, while from rest it needs the transient;

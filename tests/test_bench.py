@@ -37,6 +37,7 @@ def slow_references():
     return out
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("omega0,f_d", SCENES)
 def test_default_within_its_stated_error_of_time_stepping(slow_references, omega0, f_d):
     """Default numerics (collocation + verification, tolerance 1e-3, RMS window reused from the

@@ -107,6 +107,7 @@ def test_verified_orbit_is_reported_from_the_collocation():
     assert rms(a.y_m) == pytest.approx(rms(tight.y_m), rel=1e-5)
 
 
+@pytest.mark.slow
 def test_verification_rejects_an_inaccurate_orbit():
     """Near resonance (7 Hz) a collocation allowed a coarse harmonic tail (M = 17: 0.14 % off in
     RMS) fails the monodromy certificate and the one-period check at ss_tol 1e-5; the run goes on

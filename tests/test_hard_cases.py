@@ -261,6 +261,7 @@ def test_fast_rotation_converges_to_linear_continuum(omega0):
 
 
 # --- 2. fast drive ------------------------------------------------------------------------------
+@pytest.mark.slow
 def test_fast_drive_mass_controlled():
     """E_max = 44: f_d = 245.3 Hz with a = 1 rad/s, Omega_0 = 5 rad/s, far above the first mode
     (6.7 Hz) and between the 4th (224.5 Hz) and 5th (371 Hz) in-plane modes.
@@ -393,6 +394,7 @@ def test_fine_grids_second_order():
 
 
 # --- 4. near resonance, large amplitude, small budget -----------------------------------------
+@pytest.mark.slow
 def test_near_resonance_large_amplitude_small_budget():
     """a = 3 rad/s at f_d = 7 Hz, Omega_0 = 5 rad/s, 20 s budget.
 
@@ -594,6 +596,7 @@ def test_overdamped_long_period_two_period_window():
     assert two.rms_dynamic == pytest.approx(one.rms_dynamic, rel=1e-4)
 
 
+@pytest.mark.slow
 def test_huge_soft_beam_large_deflection():
     """L = 1 cm, E = 100 kPa, h/L = 0.1 (Fig. 7 grid): f_n = 14.9 Hz, zeta = 0.036, R/L = 15.5.
 

@@ -25,6 +25,7 @@ from rotbeam.solve.steady import steady_state  # noqa: E402
 BEAM = Beam()
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(
     "omega0, f_d",
     [(5.0, 2.0), (5.0, 7.0), (100.0, 30.0)],
