@@ -96,6 +96,21 @@ def quick_run(tmp_path_factory) -> Path:
     return work
 
 
+def numerical_first_order_jacobian(model, theta, theta_t, lam: float, lam_dot: float):
+    """Central differences (h = 1e-6) of the model's first-order right-hand side (Theta_t,
+    acceleration) at the state (theta, theta_t): what `first_order_jacobian` must equal."""
+    import numpy as np
+
+    n = model.n
+
+    def F(z):
+        a, _, _ = model.acceleration(z[:n], z[n:], lam, lam_dot)
+        return np.concatenate([z[n:], a])
+
+    z, h = np.concatenate([theta, theta_t]), 1e-6
+    return np.array([(F(z + h * e) - F(z - h * e)) / (2 * h) for e in np.eye(2 * n)]).T
+
+
 def pytest_collection_modifyitems(config, items) -> None:
     """With pytest-xdist (`-n 2 --dist loadgroup`, README's test command): a test file runs on
     one worker (its module fixtures are built once), and every test of the quick run shares one

@@ -9,6 +9,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from conftest import numerical_first_order_jacobian
 from numpy.polynomial import Chebyshev, Legendre, Polynomial
 from scipy.integrate import solve_bvp
 
@@ -190,15 +191,8 @@ def test_first_order_jacobian_with_extension_matches_finite_differences(coriolis
     assert m.grid.strain.max() > 0.3
     rng = np.random.default_rng(2)
     th, tt = 0.5 * rng.normal(size=m.n), rng.normal(size=m.n)
-    z = np.concatenate([th, tt])
-
-    def F(z):
-        a, _, _ = m.acceleration(z[: m.n], z[m.n :], 1.3, 0.7)
-        return np.concatenate([z[m.n :], a])
-
     J = m.first_order_jacobian(th, tt, 1.3, 0.7)
-    h = 1e-6
-    Jn = np.array([(F(z + h * e) - F(z - h * e)) / (2 * h) for e in np.eye(2 * m.n)]).T
+    Jn = numerical_first_order_jacobian(m, th, tt, 1.3, 0.7)
     np.testing.assert_allclose(J, Jn, rtol=1e-6, atol=1e-6 * np.abs(Jn).max())
     # and it is not the inextensible one
     m0 = DiscreteElastica(12, 2.875, 0.14, Effects(coriolis=coriolis))

@@ -14,14 +14,11 @@ from dataclasses import replace
 
 import pandas as pd
 
+from ..model.criterion import rms
 from ..model.params import Beam, Dimensionless, Drive, Effects
 from ..solve.numerics import Numerics
 from ..solve.steady import steady_state
 from .plan import SCENES
-
-
-def rms(y) -> float:
-    return float((y**2).mean() ** 0.5)
 
 
 def certificate_costs(N: int = 40, scenes=SCENES) -> pd.DataFrame:

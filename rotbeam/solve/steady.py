@@ -150,14 +150,20 @@ def first_order_rhs(
     return rhs
 
 
+def collocation_window(
+    dl: Dimensionless, num: Numerics, res: PeriodicResult
+) -> tuple[np.ndarray, np.ndarray]:
+    """(tau, Theta) of the RMS window sampled from the collocated orbit's trigonometric
+    interpolant: `rms_periods` periods of `samples_per_period` instants."""
+    m, p = num.samples_per_period, num.rms_periods
+    return period_samples(dl, 0, p, m), np.tile(trig_interpolate(res.theta.T, m).T, (1, p))
+
+
 def _from_collocation(
     model: DiscreteElastica, dl: Dimensionless, num: Numerics, res: PeriodicResult, t0: float
 ) -> SteadyState:
     """SteadyState straight from the collocation (no time stepping): `integrate=False`."""
-    m = num.samples_per_period
-    one = trig_interpolate(res.theta.T, m).T  # (n, m) over one period
-    theta = np.tile(one, (1, num.rms_periods))
-    taus = period_samples(dl, 0, num.rms_periods, m)
+    taus, theta = collocation_window(dl, num, res)
     fl = orbit_stability(model, dl, res)
     ok = res.converged and res.harmonic_tail <= num.tail_tol and model.eta > 0.0
     msg = f"collocation M={res.M}: {res.message}, harmonic tail {res.harmonic_tail:.2g}"
@@ -205,14 +211,13 @@ def certified(
         return None, ""
     if not cert.certified:
         return None, f"not certified by the monodromy ({cert.describe()}); "
-    m, p = num.samples_per_period, num.rms_periods
-    theta = np.tile(trig_interpolate(periodic.theta.T, m).T, (1, p))
+    tau, theta = collocation_window(dl, num, periodic)
     message = (
         f"collocation orbit (M={periodic.M}, harmonic tail {periodic.harmonic_tail:.2g}) "
         f"certified by the monodromy ({cert.describe()})" + stability_note(fl)
     )
     state = SteadyState(
-        tau=period_samples(dl, 0, p, m),
+        tau=tau,
         theta=theta,
         y_m=np.atleast_1d(model.grid.midspan(theta)),
         converged=True,
@@ -450,8 +455,7 @@ def rms_window(
         return Window(*run.last, run.status, run.message, k)
     if k == 1 and from_orbit and periodic.harmonic_tail <= num.tail_tol:
         return Window(
-            period_samples(dl, 0, p, m),
-            np.tile(trig_interpolate(periodic.theta.T, m).T, (1, p)),
+            *collocation_window(dl, num, periodic),
             0,
             f"collocation orbit (M={periodic.M}, harmonic tail {periodic.harmonic_tail:.2g}) "
             f"verified by one period of time stepping (transient bound {run.bound:.2g})",
