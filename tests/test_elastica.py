@@ -44,6 +44,23 @@ def test_first_order_jacobian_matches_finite_differences(coriolis):
     np.testing.assert_allclose(J, Jn, rtol=1e-6, atol=1e-6 * np.abs(Jn).max())
 
 
+@pytest.mark.parametrize("effects", [Effects(), Effects(coriolis=True, extension=True)])
+def test_batched_first_order_rows_equal_the_per_instant_ones(effects):
+    """`first_order_rows` at m instants at once (what the Floquet pass uses) gives the
+    per-instant `first_order_jacobian` and `acceleration` to round-off, instant by instant."""
+    m = DiscreteElastica(12, 2.875, 0.14, effects, 1e-2, 3.0)
+    rng = np.random.default_rng(2)
+    th, tt = 0.7 * rng.normal(size=(5, m.n)), rng.normal(size=(5, m.n))
+    lam, lam_dot = rng.normal(size=5), rng.normal(size=5)
+    F, J = m.first_order_rows(th, tt, lam, lam_dot)
+    for k in range(5):
+        Jk = m.first_order_jacobian(th[k], tt[k], lam[k], lam_dot[k])
+        ak = m.acceleration(th[k], tt[k], lam[k], lam_dot[k])[0]
+        np.testing.assert_allclose(J[k], Jk, rtol=0, atol=1e-12 * np.abs(Jk).max())
+        np.testing.assert_allclose(F[k], np.concatenate([tt[k], ak]), rtol=0,
+                                   atol=1e-12 * np.abs(ak).max())  # fmt: skip
+
+
 def test_mass_matrix_tends_to_symmetric_kernel():
     """W -> 1 - max(s, s') (the continuum kernel of int_s^1 int_0^s'' ds' ds'')."""
     for N in (20, 80):

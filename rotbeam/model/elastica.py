@@ -318,6 +318,45 @@ class DiscreteElastica:
         J[n:, n:] = -lu_solve(lu, dv, check_finite=False) - self.eta * np.eye(n)
         return J
 
+    def first_order_rows(
+        self, theta: np.ndarray, theta_t: np.ndarray, lam, lam_dot
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """The first-order right-hand side (Theta_t, Theta_tt) (m, 2n) and its exact Jacobians
+        (m, 2n, 2n) at m instants at once: theta, theta_t (m, n), lam and lam_dot (m,).  One
+        batched pass instead of m calls: the Floquet monodromy needs them at every step.  The
+        same formulas as `first_order_jacobian`, which stays the per-instant reference (its
+        output is pinned to the bit by tests/test_extension.py); the two agree to round-off
+        (tests/test_elastica.py).
+
+        With M a = r, r = -K Theta - L(Theta) - B v, v = Theta_t^2 (+ 2 lam Theta_t):
+        d(M a)/dTheta = B diag(a) - diag(B a),  d(B v)/dTheta = diag(M v) - M diag(v).
+        """
+        n, W, K = self.n, self.grid.W, self.grid.K
+        lam, lam_dot = np.asarray(lam, dtype=float), np.asarray(lam_dot, dtype=float)
+        c, s = np.cos(theta), np.sin(theta)
+        M = c[:, :, None] * W * c[:, None, :] + s[:, :, None] * W * s[:, None, :]
+        B = s[:, :, None] * W * c[:, None, :] - c[:, :, None] * W * s[:, None, :]
+        v = theta_t**2
+        if self.effects.coriolis:
+            v = v + 2.0 * lam[:, None] * theta_t
+        torque, dL = self.load_torque_rows(theta, lam, lam_dot, jacobian=True)
+        Bv = np.einsum("mij,mj->mi", B, v)
+        a0 = np.linalg.solve(M, (-(theta @ K.T) - torque - Bv)[..., None])[..., 0]
+        idx = np.arange(n)
+        dr = -(K[None] + dL) + M * v[:, None, :] - B * a0[:, None, :]
+        dr[:, idx, idx] += -np.einsum("mij,mj->mi", M, v) + np.einsum("mij,mj->mi", B, a0)
+        dv = 2.0 * B * theta_t[:, None, :]
+        if self.effects.coriolis:
+            dv = dv + 2.0 * lam[:, None, None] * B
+        X = np.linalg.solve(M, np.concatenate([dr, dv], axis=2))
+        J = np.zeros((theta.shape[0], 2 * n, 2 * n))
+        J[:, idx, n + idx] = 1.0
+        J[:, n:, :n] = X[:, :, :n]
+        J[:, n:, n:] = -X[:, :, n:]
+        J[:, n + idx, n + idx] -= self.eta
+        F = np.concatenate([theta_t, a0 - self.eta * theta_t], axis=1)
+        return F, J
+
     def tension(self, theta, theta_t, theta_tt, lam, lam_dot) -> tuple[np.ndarray, np.ndarray]:
         """Internal force n_x, n_y at nodes 1..N-1 (used in tests and for diagnostics)."""
         g = self.grid

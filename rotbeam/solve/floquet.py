@@ -150,21 +150,29 @@ def trig_eval(X: np.ndarray, period: float, t: np.ndarray, derivative: int = 0) 
 
 
 def orbit_floquet(
-    jac: Callable[[float, np.ndarray], np.ndarray],
+    jac: Callable[[float, np.ndarray], np.ndarray] | None,
     Z: np.ndarray,
     period: float,
     steps: int | None = None,
     rhs: Callable[[float, np.ndarray], np.ndarray] | None = None,
+    rows: Callable[[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray]] | None = None,
 ) -> FloquetResult:
     """Multipliers of the orbit whose states at M equispaced instants are Z (M, dim), for the
     system with Jacobian jac(t, z); the orbit between the instants is Z's trigonometric
     interpolant.  `steps` defaults to 2 M (at least 32).  With the right-hand side rhs(t, z)
-    the result also carries the interpolant's one-period `defect` (module docstring)."""
+    the result also carries the interpolant's one-period `defect` (module docstring).
+    `rows(t, Z)` -> (f (S, dim), J (S, dim, dim)) gives both at every step at once instead of
+    jac and rhs (the beam's batched `first_order_rows`)."""
     t0 = time.perf_counter()
     steps = steps or max(2 * Z.shape[0], 32)
     h = period / steps
     t = (np.arange(steps) + 0.5) * h
     Zs = trig_eval(Z, period, t)
+    if rows is not None:
+        F, Js = rows(t, Zs)
+        data = zip(Js, trig_eval(Z, period, t, derivative=1) - F, strict=True)
+        Phi, defect = propagator_with_defect(data, h)
+        return multipliers_of(Phi, steps, time.perf_counter() - t0, defect)
     if rhs is None:
         Phi = propagator((jac(tk, zk) for tk, zk in zip(t, Zs, strict=True)), h)
         return multipliers_of(Phi, steps, time.perf_counter() - t0)
@@ -184,19 +192,16 @@ def beam_floquet(
     steps: int | None = None,
 ) -> FloquetResult:
     """Multipliers of the beam's orbit sampled at M equispaced instants of the drive period,
-    theta and theta_t (n, M), with the model's exact `first_order_jacobian`, and the orbit's
-    one-period defect."""
+    theta and theta_t (n, M), with the model's exact Jacobians (`first_order_rows`, all steps
+    in one batch), and the orbit's one-period defect."""
     n = model.n
 
-    def jac(t: float, z: np.ndarray) -> np.ndarray:
-        return model.first_order_jacobian(z[:n], z[n:], dl.lam(t), dl.lam_dot(t))
-
-    def rhs(t: float, z: np.ndarray) -> np.ndarray:
-        acc, _, _ = model.acceleration(z[:n], z[n:], dl.lam(t), dl.lam_dot(t))
-        return np.concatenate([z[n:], acc])
+    def rows(t: np.ndarray, Z: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        lam = [dl.lam(tk) for tk in t]
+        return model.first_order_rows(Z[:, :n], Z[:, n:], lam, [dl.lam_dot(tk) for tk in t])
 
     Z = np.concatenate([theta, theta_t], axis=0).T
-    return orbit_floquet(jac, Z, dl.period, steps, rhs)
+    return orbit_floquet(None, Z, dl.period, steps, rows=rows)
 
 
 def sampled_beam_floquet(
