@@ -127,14 +127,11 @@ def test_grid_beam_keeps_what_it_says():
 
 
 @pytest.fixture(scope="module")
-def quick_run(tmp_path_factory):
-    work = tmp_path_factory.mktemp("claims")
-    shutil.copy(ROOT / "Snakefile", work)
-    for d in ("config", "workflow", "profiles"):
-        shutil.copytree(ROOT / d, work / d)
-    p = subprocess.run([*SNAKEMAKE, "--cores", "2", "--configfile", "config/quick.yaml"],
-                       cwd=work, capture_output=True, text=True, timeout=1800)  # fmt: skip
-    assert p.returncode == 0, p.stderr[-3000:]
+def claims_work(quick_run, tmp_path_factory) -> Path:
+    """A copy of the session's finished quick run (conftest), results and records included:
+    these tests edit outputs and config, so they must not touch the shared run."""
+    work = tmp_path_factory.mktemp("claims") / "wf"
+    shutil.copytree(quick_run, work, symlinks=True)
     return work
 
 
@@ -164,35 +161,35 @@ def claims_of(work: Path, *extra: str) -> pd.DataFrame:
 
 
 @pytest.mark.slow
-def test_each_study_reruns_on_its_own_config_only(quick_run):
-    assert dry_jobs(quick_run) == {}
-    d9 = dry_jobs(quick_run, "--config", "reproduction={'figD9': {'delta_points': 60}}")
+def test_each_study_reruns_on_its_own_config_only(claims_work):
+    assert dry_jobs(claims_work) == {}
+    d9 = dry_jobs(claims_work, "--config", "reproduction={'figD9': {'delta_points': 60}}")
     assert set(d9) == {"repro_figD9", "reproduction"}, d9
-    f7 = dry_jobs(quick_run, "--config", "reproduction={'fig7': {'points': 6}}")
+    f7 = dry_jobs(claims_work, "--config", "reproduction={'fig7': {'points': 6}}")
     assert f7.get("repro_fig7_variant") == 6 and f7.get("repro_fig7") == 1, f7
     assert not {"repro_figD9", "repro_estar", "repro_fn_zeta", "sweep_line"} & set(f7), f7
-    one = dry_jobs(quick_run, "--config", "reproduction={'fig7': {'damping': ['eta']}}")
+    one = dry_jobs(claims_work, "--config", "reproduction={'fig7': {'damping': ['eta']}}")
     assert "repro_fig7_variant" not in one and one.get("repro_fig7") == 1, one  # reused
-    beam = dry_jobs(quick_run, "--config", "beam={'gamma': 0.03}")
+    beam = dry_jobs(claims_work, "--config", "beam={'gamma': 0.03}")
     assert beam.get("repro_fn_zeta") == 1 and beam.get("repro_fig7_variant") == 6, beam
 
 
 @pytest.mark.slow
-def test_claims_follow_the_outputs(quick_run):
-    before = pd.read_csv(quick_run / "results/reproduction/claims.csv").set_index("id")
+def test_claims_follow_the_outputs(claims_work):
+    before = pd.read_csv(claims_work / "results/reproduction/claims.csv").set_index("id")
     assert before.loc["c0_0.02", "status"] == "reproduced"
-    path = quick_run / "results/tables/c0_threshold.csv"
+    path = claims_work / "results/tables/c0_threshold.csv"
     t = pd.read_csv(path)
     t.loc[np.isclose(t["threshold"], 0.02), "c0_zeta0"] = 0.15
     t.to_csv(path, index=False)
-    after = claims_of(quick_run)
+    after = claims_of(claims_work)
     assert after.loc["c0_0.02", "ours"] == pytest.approx(0.15)
     assert after.loc["c0_0.02", "status"] == "unexplained"
     # the c study's slot: a hypothesis that gives the printed c explains the claim
-    (quick_run / "results/reproduction/c_hypotheses.csv").write_text(
+    (claims_work / "results/reproduction/c_hypotheses.csv").write_text(
         "hypothesis,threshold,c\nmade-up reading,0.10,0.3851\nother,0.10,0.2\n"
     )
-    slot = claims_of(quick_run, "--config", "reproduction={'c_hypotheses': True}")
+    slot = claims_of(claims_work, "--config", "reproduction={'c_hypotheses': True}")
     assert slot.loc["c_0.10", "status"] == "explained"
     assert slot.loc["c_0.10", "explained_value"] == pytest.approx(0.3851)
     assert "other gave 0.2" in slot.loc["c_0.10", "explanation"]

@@ -195,16 +195,43 @@ def identify(
 ) -> Identification:
     """Least-squares fit of `names` to the measured curve (module docstring)."""
     t0 = time.perf_counter()
-    base = beam or Beam()
     model = ResonanceModel(curve.f_d, omega0, amplitude, effects or Effects(),
                            numerics or FIT_NUMERICS)  # fmt: skip
     n, p = curve.f_d.size, len(names)
     if n <= p:
         raise RotbeamInputError(f"{n} points cannot fit {p} parameters; need >= {p + 1}")
-    start = start_values(curve, names, base, model)
+    start = start_values(curve, names, beam or Beam(), model)
     x0 = np.array([getattr(start, k) for k in names])
-    w = curve.rms_std if curve.rms_std is not None else np.ones(n)
+    resid, jac, failures = _residuals(curve, names, start, x0, model)
+    sol = least_squares(resid, np.zeros(p), jac=jac, bounds=(-BOUND, BOUND), method="trf",
+                        xtol=1e-4, ftol=1e-8, max_nfev=40)  # fmt: skip
+    x = x0 * np.exp(sol.x)
+    r = resid(sol.x, strict=True)
+    rss, dof = float(r @ r), n - p
+    scale = rss / dof if curve.rms_std is None else max(1.0, rss / dof)
+    se = _log_stderr(jac(sol.x), scale)  # the Jacobian at the optimum (cached base point)
+    q = float(student_t.ppf(0.975, dof))
+    fitted = _with(start, names, x)
+    return Identification(
+        names=names, values=dict(zip(names, x.tolist(), strict=True)),
+        stderr={k: float(v * s) for k, v, s in zip(names, x, se, strict=True)},
+        low={k: float(v * math.exp(-q * s)) for k, v, s in zip(names, x, se, strict=True)},
+        high={k: float(v * math.exp(q * s)) for k, v, s in zip(names, x, se, strict=True)},
+        start=dict(zip(names, x0.tolist(), strict=True)), beam=fitted, model_rms=model(fitted),
+        rss=rss, dof=dof, scale=scale, evaluations=model.evaluations, runs=model.runs,
+        seconds=time.perf_counter() - t0, success=bool(sol.success),
+        message=str(sol.message) + (f"; {len(failures)} trial point(s) without steady state"
+                                    if failures else ""),
+    )  # fmt: skip
 
+
+def _residuals(curve: ResonanceCurve, names: tuple[str, ...], start: Beam, x0: np.ndarray,
+               model: ResonanceModel):  # fmt: skip
+    """The weighted residuals r(u) of the fit in log parameters u (x = x0 exp(u)), their
+    forward-difference Jacobian, and the list the trial points without a steady state go to
+    (a penalty residual, unless `strict`)."""
+    n, p = curve.f_d.size, len(names)
+    w = curve.rms_std if curve.rms_std is not None else np.ones(n)
     failures: list[str] = []
 
     def resid(u: np.ndarray, strict: bool = False) -> np.ndarray:
@@ -226,30 +253,14 @@ def identify(
                 cols.append((r0 - resid(u - STEP * e, strict=True)) / STEP)
         return np.column_stack(cols)
 
-    sol = least_squares(resid, np.zeros(p), jac=jac, bounds=(-BOUND, BOUND), method="trf",
-                        xtol=1e-4, ftol=1e-8, max_nfev=40)  # fmt: skip
-    u = sol.x
-    J = jac(u)  # at the optimum (cached base point)
-    r = resid(u, strict=True)
-    rss = float(r @ r)
-    dof = n - p
-    scale = rss / dof if curve.rms_std is None else max(1.0, rss / dof)
+    return resid, jac, failures
+
+
+def _log_stderr(J: np.ndarray, scale: float) -> np.ndarray:
+    """Standard errors of the log parameters from the Jacobian at the optimum (infinite when
+    J^T J is singular: a parameter the curve does not determine)."""
     try:
         cov = scale * np.linalg.inv(J.T @ J)
     except np.linalg.LinAlgError:
-        cov = np.full((p, p), np.inf)
-    se = np.sqrt(np.clip(np.diag(cov), 0.0, np.inf))
-    q = float(student_t.ppf(0.975, dof))
-    x = x0 * np.exp(u)
-    fitted = _with(start, names, x)
-    return Identification(
-        names=names, values=dict(zip(names, x.tolist(), strict=True)),
-        stderr={k: float(v * s) for k, v, s in zip(names, x, se, strict=True)},
-        low={k: float(v * math.exp(-q * s)) for k, v, s in zip(names, x, se, strict=True)},
-        high={k: float(v * math.exp(q * s)) for k, v, s in zip(names, x, se, strict=True)},
-        start=dict(zip(names, x0.tolist(), strict=True)), beam=fitted, model_rms=model(fitted),
-        rss=rss, dof=dof, scale=scale, evaluations=model.evaluations, runs=model.runs,
-        seconds=time.perf_counter() - t0, success=bool(sol.success),
-        message=str(sol.message) + (f"; {len(failures)} trial point(s) without steady state"
-                                    if failures else ""),
-    )  # fmt: skip
+        cov = np.full((J.shape[1], J.shape[1]), np.inf)
+    return np.sqrt(np.clip(np.diag(cov), 0.0, np.inf))
