@@ -126,8 +126,9 @@ def _scene_flags(p: argparse.ArgumentParser, drive_frequency: bool) -> None:
                    f"{', '.join(param('numerics', 'method').choices)}")  # fmt: skip
     p.add_argument("--rtol", type=_finite, help=help_text("numerics", "rtol"))
     p.add_argument("--effects", help="comma list of effects switched on, e.g. centrifugal,euler"
-                   + ("; or auto[:TOL]: those whose share of RMS is >= TOL (default 0.001), "
-                      "from `rotbeam effects`" if drive_frequency else ""))  # fmt: skip
+                   + "; or auto[:TOL]: those whose share of RMS is >= TOL (default 0.001), "
+                   "from `rotbeam effects`" + ("" if drive_frequency else
+                   " at the linear estimate of f_d*"))  # fmt: skip
     p.add_argument("--json", action="store_true", help="print one JSON object")
 
 
@@ -203,24 +204,17 @@ def _check_threshold_flag(value: float) -> None:
 
 
 def _auto_tol(args: argparse.Namespace) -> float | None:
-    """TOL of `--effects auto[:TOL]` (default AUTO_TOL), else None; clears args.effects."""
-    from .analysis.effect_budget import AUTO_TOL
+    """TOL of `--effects auto[:TOL]`, or else of the scene file's `effects: auto` (AUTO_TOL by
+    default), else None; clears args.effects of the flag's auto."""
+    from .config.scenefile import auto_tol, split_auto
 
     text = args.effects or ""
-    if text != "auto" and not text.startswith("auto:"):
-        return None
-    args.effects = None
-    if text == "auto":
-        return AUTO_TOL
-    try:
-        tol = float(text[5:])
-    except ValueError:
-        tol = math.nan
-    if not 0.0 <= tol < 1.0:
-        raise RotbeamInputError(
-            f"argument --effects: {text!r}: TOL must be a number in [0, 1) (a share of RMS)"
-        )
-    return tol
+    if text == "auto" or text.startswith("auto:"):
+        args.effects = None
+        return auto_tol(text, "argument --effects")
+    if args.effects is None and args.scene:  # an explicit --effects list wins over the file
+        return split_auto(_scene_file_sections(args.scene, keep_auto=True))[1]
+    return None
 
 
 def _auto_scene(scene, tol: float):
@@ -232,7 +226,14 @@ def _auto_scene(scene, tol: float):
         raise RotbeamInputError("--effects auto: the scene has no steady state to share out")
     auto = auto_effects(budget, tol)
     return replace(scene, effects=auto.effects), auto.as_dict() | {
-        "budget_seconds": budget.total_seconds}  # fmt: skip
+        "budget_seconds": budget.total_seconds, "budget_f_d": scene.drive.f_d}  # fmt: skip
+
+
+def _print_auto(auto: dict[str, Any]) -> None:
+    print(f"{'effects auto':16s} kept {','.join(auto['kept'])}; dropped "
+          f"{','.join(auto['dropped']) or 'none'} (worth {auto['dropped_share']:.2g} of "
+          f"RMS at f_d = {auto['budget_f_d']:.4g} Hz; the budget took "
+          f"{auto['budget_seconds']:.3g} s)")  # fmt: skip
 
 
 def cmd_simulate(args: argparse.Namespace) -> int:
@@ -286,9 +287,7 @@ def cmd_simulate(args: argparse.Namespace) -> int:
         print(f"{'converged':16s} {summary['converged']} ({summary['message']})")
         print(f"{'verdict':16s} {verdict.text}")
         if auto is not None:
-            print(f"{'effects auto':16s} kept {','.join(auto['kept'])}; dropped "
-                  f"{','.join(auto['dropped']) or 'none'} (worth {auto['dropped_share']:.2g} of "
-                  f"RMS; the budget took {auto['budget_seconds']:.3g} s)")  # fmt: skip
+            _print_auto(auto)
         print(f"{'seconds':16s} {summary['seconds']:.3g}")
         if prop is not None:
             _print_uncertainty(prop)
@@ -310,20 +309,29 @@ def _response(res, args: argparse.Namespace) -> dict[str, Any]:
 
 
 def cmd_critical(args: argparse.Namespace) -> int:
-    from .analysis.verdict import critical_frequency
+    from .analysis.verdict import critical_frequency, critical_start_hz
 
     _check_threshold_flag(args.threshold)
     if not 1e-8 <= args.ftol <= 0.1:
         raise RotbeamInputError(f"argument --ftol: must be in [1e-8, 0.1], got {args.ftol!r}")
+    tol = _auto_tol(args)
     args.fd = (
         1.0  # a placeholder the scene needs (a scene file's f_d is ignored): the search sets f_d
     )
     scene = _scene_from_args(args)
+    auto = None
+    if tol is not None:  # the budget at the search's first guess, the linear estimate
+        drive = scene.drive
+        f_start = critical_start_hz(scene.beam, drive.omega0, args.threshold, drive.amplitude)
+        scene, auto = _auto_scene(replace(scene, drive=replace(drive, f_d=f_start)), tol)
     inputs, scene = _uncertainty_inputs(args, scene)
     res = critical_frequency(scene.beam, scene.drive.omega0, args.threshold, scene.drive.amplitude,
                              scene.effects, scene.numerics, args.ftol)  # fmt: skip
     out = res.as_dict() | {"omega0": scene.drive.omega0, "amplitude": scene.drive.amplitude,
-                           "N": scene.numerics.N}  # fmt: skip
+                           "N": scene.numerics.N,
+                           "effects": ",".join(scene.effects.active())}  # fmt: skip
+    if auto is not None:
+        out["effects_auto"] = auto
     prop = _critical_uncertainty(args, scene, res, inputs) if inputs else None
     if prop is not None:
         out["uncertainty"] = prop.as_dict()
@@ -336,6 +344,8 @@ def cmd_critical(args: argparse.Namespace) -> int:
         print(f"{'estimate_hz':16s} {res.estimate_hz:.6g} (linear, where the search started)")
         print(f"{'found':16s} {res.found} ({res.message})")
         print(f"{'evaluations':16s} {len(res.visited)}")
+        if auto is not None:
+            _print_auto(auto)
         print(f"{'seconds':16s} {res.seconds:.3g}")
         if prop is not None:
             _print_uncertainty(prop)
@@ -480,13 +490,14 @@ def _calibration_parsers(sub: Any) -> None:
     i.add_argument("--plot", help="draw data, fitted and scene-beam curves (.png, .pdf, .svg)")
 
 
-def _scene_file_sections(path: str | None) -> dict[str, Any]:
-    """A scene file's sections without its `uncertainty` section (read by _uncertainty_inputs)."""
-    from .config.scenefile import load_scene_file
+def _scene_file_sections(path: str | None, keep_auto: bool = False) -> dict[str, Any]:
+    """A scene file's sections without its `uncertainty` section (read by _uncertainty_inputs)
+    and, unless keep_auto, without `effects: auto` (read by _auto_tol)."""
+    from .config.scenefile import load_scene_file, split_auto
 
     raw = dict(load_scene_file(path)) if path else {}
     raw.pop("uncertainty", None)
-    return raw
+    return raw if keep_auto else split_auto(raw)[0]
 
 
 def _uncertainty_inputs(args: argparse.Namespace, scene):

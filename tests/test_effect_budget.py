@@ -91,3 +91,64 @@ def test_simulate_effects_auto_cli():
     assert out["effects_auto"]["dropped"] == ["coriolis", "extension"]
     bad = subprocess.run(run + ["auto:2"], capture_output=True, text=True, timeout=120)
     assert bad.returncode == 2 and "[0, 1)" in bad.stderr and bad.stderr.count("\n") == 1
+
+
+def _cli(*argv: str, timeout: float = 300) -> subprocess.CompletedProcess:
+    return subprocess.run([sys.executable, "-m", "rotbeam.cli", *argv], capture_output=True,
+                          text=True, timeout=timeout)  # fmt: skip
+
+
+def test_critical_effects_auto_cli():
+    """`rotbeam critical --effects auto` budgets the effects at the search's start (the linear
+    estimate of f_d*): at 5 rad/s Coriolis and extension are below 0.1 % of RMS and dropped;
+    TOL = 0 keeps every effect; a bad TOL is one line and exit 2."""
+    run = ["critical", "--omega0", "5", "--N", "8", "--json", "--effects"]
+    out = json.loads((p := _cli(*run, "auto")).stdout or "{}")
+    assert p.returncode == 0, p.stderr
+    auto = out["effects_auto"]
+    assert auto["dropped"] == ["coriolis", "extension"] and auto["tol"] == 1e-3
+    assert auto["budget_f_d"] == pytest.approx(out["estimate_hz"], rel=1e-12)
+    assert out["effects"] == "centrifugal,softening,euler,damping"
+    every = json.loads((p := _cli(*run, "auto:0")).stdout or "{}")
+    assert p.returncode == 0, p.stderr
+    assert every["effects_auto"]["dropped"] == []
+    assert every["effects"] == "centrifugal,softening,euler,coriolis,damping,extension"
+    # the dropped effects were worth < 0.1 % of RMS, so f_d* moves by less than its tolerance
+    assert every["f_d_star"] == pytest.approx(out["f_d_star"], rel=2e-3)
+    for bad in ("auto:-0.1", "auto:1", "auto:x"):
+        p = _cli(*run, bad, timeout=120)
+        assert p.returncode == 2 and p.stderr.count("\n") == 1 and "[0, 1)" in p.stderr, bad
+
+
+def test_scene_file_effects_auto(tmp_path):
+    """A scene file's `effects: auto` (or `{auto: TOL}`) is `--effects auto[:TOL]`; an explicit
+    --effects list wins over it; a bad TOL names effects.auto in one line, exit 2."""
+    from rotbeam.config.scenefile import split_auto
+
+    assert split_auto({"effects": "auto"}) == ({}, 1e-3)
+    assert split_auto({"effects": {"auto": 0, "coriolis": True}}) == (
+        {"effects": {"coriolis": True}}, 0.0)  # fmt: skip
+    assert split_auto({"effects": {"coriolis": True}}) == ({"effects": {"coriolis": True}}, None)
+
+    def scene_file(effects: str) -> str:
+        path = tmp_path / f"s{len(list(tmp_path.iterdir()))}.yaml"
+        path.write_text(f"drive: {{omega0: 5, f_d: 2}}\nnumerics: {{N: 8}}\neffects: {effects}\n")
+        return str(path)
+
+    out = json.loads(
+        (p := _cli("simulate", "--scene", scene_file("auto"), "--json")).stdout or "{}"
+    )
+    assert p.returncode == 0, p.stderr
+    assert out["effects_auto"]["dropped"] == ["coriolis", "extension"]
+    assert out["effects"] == "centrifugal,softening,euler,damping"
+    zero = scene_file("{auto: 0}")
+    out = json.loads((p := _cli("simulate", "--scene", zero, "--json")).stdout or "{}")
+    assert p.returncode == 0, p.stderr
+    assert out["effects_auto"]["dropped"] == [] and "extension" in out["effects"]
+    listed = _cli("simulate", "--scene", zero, "--json", "--effects", "centrifugal,euler,damping")
+    out = json.loads(listed.stdout or "{}")
+    assert "effects_auto" not in out and out["effects"] == "centrifugal,euler,damping"
+    for bad in ("{auto: 2}", "{auto: yes}", "auto:-1"):
+        p = _cli("simulate", "--scene", scene_file(bad), timeout=120)
+        assert p.returncode == 2 and p.stderr.count("\n") == 1 and "effects" in p.stderr, bad
+        assert "[0, 1)" in p.stderr, bad

@@ -132,6 +132,7 @@ class Outputs:
     main_threshold: float = 0.10
     amplitude: float = 1.0
     convergence_tolerance: float = 0.01
+    stretch: pd.DataFrame | None = None  #: rotbeam.analysis.stretch_study's table
     extra: dict = field(default_factory=dict)
 
 
@@ -287,8 +288,35 @@ def ours_values(o: Outputs, claims: pd.DataFrame) -> dict[str, tuple[float, str]
         row = o.c0_table[np.isclose(o.c0_table["threshold"], th0)]
         if len(row):
             out["c0_small_zeta"] = (float(row["c0_zeta0"].iloc[0]), "zeta -> 0")
+    if o.stretch is not None:
+        for cid in ("inextensible_fd_star", "inextensible_c_max"):
+            if cid in at:
+                out[cid] = stretch_claim(o.stretch, cid, float(at[cid]["within"]))
     out.update(o.extra)
     return out
+
+
+def stretch_claim(table: pd.DataFrame, cid: str, within: float) -> tuple[float, str]:
+    """(value, note) of the inextensible_* claims from the stretch study's table: the largest
+    |f_d* change| or the C_max where it passes `within`; the note gives every line's clamp
+    strain and the studied lines' changes of f_d*, RMS and Delta RMS."""
+    from .stretch_study import inextensible_limit
+
+    parts = []
+    for _, r in table.sort_values("C_max").iterrows():
+        text = f"C_max {r['C_max']:g}: strain {100 * r['clamp_strain']:.3g} %"
+        if bool(r["studied"]):
+            text += (
+                f", f_d* {100 * r['f_d_star_change']:+.3g} %, "
+                f"RMS {100 * r['rms_change']:+.3g} %, Delta RMS {r['delta_change']:+.2g}"
+            )
+        parts.append(text)
+    note = "; ".join(parts)
+    if cid == "inextensible_c_max":
+        return inextensible_limit(table, within), note
+    studied = table[table["studied"].astype(bool)]
+    worst = float(np.abs(studied["f_d_star_change"]).max()) if len(studied) else math.nan
+    return worst, note
 
 
 def builtin_hypotheses(

@@ -28,6 +28,7 @@ import time
 from dataclasses import dataclass, field, fields, replace
 from typing import Any
 
+from ..config.scenefile import AUTO_TOL as _AUTO_TOL
 from ..model.params import Effects
 from ..simulate.scene import Scene, SceneResult, simulate
 
@@ -174,8 +175,9 @@ def effect_budget(scene: Scene) -> EffectBudget:
     return budget
 
 
-#: `--effects auto` keeps the effects whose |share of RMS| is at least this (0.1 %)
-AUTO_TOL = 1e-3
+#: `--effects auto` keeps the effects whose |share of RMS| is at least this (0.1 %; defined with
+#: the scene files' `effects: auto`)
+AUTO_TOL = _AUTO_TOL
 
 
 @dataclass(frozen=True)

@@ -185,6 +185,16 @@ def _bracket(
             f"steps of x{step:.3g})")  # fmt: skip
 
 
+def critical_start_hz(beam: Beam, omega0: float, threshold: float = 0.10,
+                      amplitude: float = 1.0) -> float:  # fmt: skip
+    """Where `critical_frequency` starts: the linear estimate of f_d* [Hz] (`linear_estimate`
+    times f_0 at omega0 + amplitude); `rotbeam critical --effects auto` budgets the effects here."""
+    th = check_threshold(threshold)
+    return linear_estimate(beam.derived()["zeta"], th)[1] * resonance_frequency_hz(
+        beam, omega0, amplitude
+    )
+
+
 def critical_frequency(
     beam: Beam,
     omega0: float,

@@ -1,9 +1,14 @@
 """Scene files: YAML with sections `beam`, `drive`, `effects`, `numerics` whose keys are the
 registry's fields (rotbeam.config.parameters); unknown sections or keys are errors naming the key,
-its value and what is allowed.  The objects are built in rotbeam.simulate.scene."""
+its value and what is allowed.  The objects are built in rotbeam.simulate.scene.
+
+`effects: auto` (or `effects: {auto: TOL}`, or the flag's spelling `auto:TOL`) asks for the effects
+the scene's effect budget calls for (rotbeam.analysis.effect_budget.auto_effects); `split_auto`
+takes it out of the spec before the sections are checked."""
 
 from __future__ import annotations
 
+import math
 import re
 from pathlib import Path
 from typing import Any
@@ -36,6 +41,46 @@ _Loader.add_implicit_resolver(
 def load_yaml(text: str):
     """YAML with scientific notation read as numbers."""
     return yaml.load(text, Loader=_Loader)
+
+
+#: default TOL of `effects: auto` and `--effects auto`: keep the effects whose |share of RMS(y_m)|
+#: is at least this (0.1 %)
+AUTO_TOL = 1e-3
+
+
+def auto_tol(value: Any, where: str) -> float:
+    """TOL of an `auto` request: "auto" (AUTO_TOL), "auto:TOL" or a number, in [0, 1); `where`
+    names the key or flag in the one-line error."""
+    if value == "auto":
+        return AUTO_TOL
+    if isinstance(value, str) and value.startswith("auto:"):
+        value = value[5:]
+    try:
+        tol = math.nan if isinstance(value, bool) else float(value)
+    except (TypeError, ValueError):
+        tol = math.nan
+    if not 0.0 <= tol < 1.0:
+        raise RotbeamInputError(
+            f"{where}: {show(value)}: TOL must be a number in [0, 1) (a share of RMS(y_m)), "
+            f"e.g. auto:0.01"
+        )
+    return tol
+
+
+def split_auto(spec: Any) -> tuple[Any, float | None]:
+    """The scene spec without its `effects: auto` / `effects: {auto: TOL}` / `effects: auto:TOL`,
+    and TOL (None without).  Other keys beside `auto` are the effects the budget starts from."""
+    if not isinstance(spec, dict):
+        return spec, None
+    eff = spec.get("effects")
+    if isinstance(eff, str) and (eff == "auto" or eff.startswith("auto:")):
+        rest = {k: v for k, v in spec.items() if k != "effects"}
+        return rest, auto_tol(eff, "effects")
+    if isinstance(eff, dict) and "auto" in eff:
+        rest = dict(spec)
+        rest["effects"] = {k: v for k, v in eff.items() if k != "auto"}
+        return rest, auto_tol(eff["auto"], "effects.auto")
+    return spec, None
 
 
 def scene_sections(spec: Any) -> dict[str, dict[str, Any]]:

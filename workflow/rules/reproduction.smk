@@ -140,6 +140,33 @@ rule repro_figD9:
         "../scripts/repro_figD9.py"
 
 
+rule repro_stretch:
+    output:
+        csv="results/reproduction/stretch.csv",
+        md=report(
+            "results/reproduction/stretch.md",
+            caption="../report/repro_stretch.rst",
+            category="Reproduction",
+        ),
+    log:
+        "logs/repro_stretch.log",
+    benchmark:
+        "benchmarks/repro_stretch.tsv"
+    conda:
+        "../envs/rotbeam.yaml"
+    params:
+        code=code_version("repro_stretch"),
+        beam=config["beam"],
+        lines=config["boundary"]["c_max"],
+        stretch=REPRO["stretch"],
+        amplitude=config["amplitude"],
+        threshold=config["main_threshold"],
+        effects=config["effects"],
+        numerics=config["numerics"],
+    script:
+        "../scripts/repro_stretch.py"
+
+
 rule reproduction:
     input:
         claims=PAPER_CLAIMS,
@@ -163,6 +190,7 @@ rule reproduction:
             s=["fig7", "estar", "fn_zeta", "figD9"],
         ),
         c_hypotheses=c_hypotheses_input,
+        stretch="results/reproduction/stretch.csv",
     output:
         csv="results/reproduction/claims.csv",
         md=report(

@@ -35,6 +35,7 @@ with job_log(snakemake.log[0], snakemake.input, snakemake.output, snakemake.rule
         ref_lines=pd.concat([pd.read_csv(f) for f in inp.ref_lines], ignore_index=True),
         c0_table=pd.read_csv(inp.c0_table),
         convergence=pd.read_csv(inp.convergence),
+        stretch=pd.read_csv(inp.stretch),
         main_threshold=float(snakemake.params.threshold),
         amplitude=float(snakemake.params.amplitude),
         convergence_tolerance=float(snakemake.params.convergence_tolerance),
