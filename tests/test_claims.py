@@ -92,6 +92,26 @@ def test_c_hypotheses_slot_names_the_claims():
     assert t["claim"].tolist() == ["c_0.10"]
 
 
+def test_c_claims_need_one_mechanism_at_every_threshold():
+    """A c hypothesis that hits one threshold but misses another explains neither (App. D's
+    four values come from one pipeline); one that hits both explains both."""
+    claims = rows(("c_0.05", "D", 0.311, "", 0.001, "stated"),
+                  ("c_0.10", "D", 0.385, "", 0.001, "stated"))  # fmt: skip
+    study = pd.DataFrame({"hypothesis": ["knob", "knob", "pipeline", "pipeline"],
+                          "threshold": [0.05, 0.10, 0.05, 0.10],
+                          "c": [0.3112, 0.3700, 0.3105, 0.3853]})  # fmt: skip
+    ours = {"c_0.05": (0.229, ""), "c_0.10": (0.323, "")}
+    long = c_hypotheses_long(study, claims)
+    assert long.set_index("hypothesis")["counts"].groupby(level=0).all().to_dict() == {
+        "knob": False, "pipeline": True}  # fmt: skip
+    out = judge(claims, ours, long).set_index("id")
+    assert (out["status"] == "explained").all()
+    assert "pipeline gives" in out.loc["c_0.05", "explanation"]
+    assert "knob gave 0.3112 (misses c_0.10)" in out.loc["c_0.05", "explanation"]
+    alone = judge(claims, ours, long[long["hypothesis"] == "knob"]).set_index("id")
+    assert (alone["status"] == "unexplained").all()
+
+
 def test_southwell_delta_limits():
     # delta = 1 (clamp on the axis): the classical hub-free Southwell coefficient 1.1933 of
     # flapwise bending, less the 1 of in-plane softening

@@ -98,6 +98,7 @@ def _cli(*argv: str, timeout: float = 300) -> subprocess.CompletedProcess:
                           text=True, timeout=timeout)  # fmt: skip
 
 
+@pytest.mark.slow  # several CLI runs, each with its budget
 def test_critical_effects_auto_cli():
     """`rotbeam critical --effects auto` budgets the effects at the search's start (the linear
     estimate of f_d*): at 5 rad/s Coriolis and extension are below 0.1 % of RMS and dropped;
@@ -120,6 +121,7 @@ def test_critical_effects_auto_cli():
         assert p.returncode == 2 and p.stderr.count("\n") == 1 and "[0, 1)" in p.stderr, bad
 
 
+@pytest.mark.slow  # several CLI runs, each with its budget
 def test_scene_file_effects_auto(tmp_path):
     """A scene file's `effects: auto` (or `{auto: TOL}`) is `--effects auto[:TOL]`; an explicit
     --effects list wins over it; a bad TOL names effects.auto in one line, exit 2."""

@@ -61,7 +61,10 @@ def judge_row(claim: pd.Series, ours: float, note: str, tried: pd.DataFrame) -> 
         (str(h["hypothesis"]), float(h["value"]), "" if pd.isna(h.get("note")) else str(h["note"]))
         for _, h in tried.iterrows()
     ]
-    hits = [t for t in tries if agrees(t[1], p, tol, kind)]
+    # a hypothesis marked counts = False (one that fails a sibling claim it must explain too)
+    # is listed but explains nothing
+    counts = tried["counts"].tolist() if "counts" in tried else [True] * len(tries)
+    hits = [t for t, ok in zip(tries, counts, strict=True) if ok and agrees(t[1], p, tol, kind)]
     listing = "; ".join(f"{h} gave {_fmt(v)}" + (f" ({n})" if n else "") for h, v, n in tries)
     base = f"ours {_fmt(ours)}" + (f" ({note})" if note else "")
     if agrees(ours, p, tol, kind):
@@ -100,14 +103,33 @@ def judge(
     return pd.DataFrame(rows, columns=COLUMNS)
 
 
-def c_hypotheses_long(table: pd.DataFrame) -> pd.DataFrame:
-    """The c study's (hypothesis, threshold, c) rows as claims c_<threshold>."""
+def c_hypotheses_long(table: pd.DataFrame, claims: pd.DataFrame | None = None) -> pd.DataFrame:
+    """The c study's (hypothesis, threshold, c) rows as claims c_<threshold>.
+
+    One mechanism must give the printed c at every threshold at once (App. D prints four values
+    of one pipeline): with the claims given, a hypothesis that misses any threshold it was run
+    at explains none of them (`counts` False, and its note says so), so that no claim is
+    explained by one reading and its neighbour by another."""
     rows = [
         {"claim": f"c_{float(r['threshold']):.2f}", "hypothesis": str(r["hypothesis"]),
-         "value": float(r["c"]), "note": ""}
+         "value": float(r["c"]), "note": "", "counts": True}
         for _, r in table.iterrows()
     ]  # fmt: skip
-    return pd.DataFrame(rows, columns=HYPOTHESIS_COLUMNS)
+    out = pd.DataFrame(rows, columns=[*HYPOTHESIS_COLUMNS, "counts"])
+    if claims is None or out.empty:
+        return out
+    printed = claims.set_index("id")
+    for _, group in out.groupby("hypothesis"):
+        misses = [
+            c for c, v in zip(group["claim"], group["value"], strict=True)
+            if c in printed.index and not agrees(
+                v, float(printed.loc[c, "paper"]), float(printed.loc[c, "tolerance"]),
+                str(printed.loc[c, "kind"]))
+        ]  # fmt: skip
+        if misses:
+            out.loc[group.index, "counts"] = False
+            out.loc[group.index, "note"] = "misses " + ", ".join(misses)
+    return out
 
 
 # --- ours: read from the workflow's outputs ---------------------------------------------------

@@ -42,8 +42,12 @@ with job_log(snakemake.log[0], snakemake.input, snakemake.output, snakemake.rule
     )
     ours = ours_values(out, claims)
     hyp = [pd.read_csv(f) for f in inp.studies] + [builtin_hypotheses(out, claims, ours)]
-    hyp += [c_hypotheses_long(pd.read_csv(f)) for f in inp.c_hypotheses]
-    hyp = pd.concat([h[HYPOTHESIS_COLUMNS] for h in hyp if len(h)], ignore_index=True)
+    hyp += [c_hypotheses_long(pd.read_csv(f), claims) for f in inp.c_hypotheses]
+    hyp = pd.concat(
+        [h.reindex(columns=[*HYPOTHESIS_COLUMNS, "counts"]) for h in hyp if len(h)],
+        ignore_index=True,
+    )
+    hyp["counts"] = hyp["counts"].fillna(True).astype(bool)
     table = judge(claims, ours, hyp)
     log.info("claims:\n%s", table[["id", "paper", "ours", "status"]].to_string())
     write_csv(table, snakemake.output.csv)
