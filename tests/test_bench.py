@@ -50,6 +50,7 @@ def test_default_within_its_stated_error_of_time_stepping(slow_references, omega
     assert abs(r.delta_rms - ref.delta_rms) <= 1e-3 * max(ref.delta_rms, 0.1)
 
 
+@pytest.mark.slow  # slow_references: five tight time-stepped runs
 @pytest.mark.parametrize("omega0,f_d", SCENES)
 def test_collocation_only_within_its_tail_tolerance(slow_references, omega0, f_d):
     """Collocation without time stepping: the harmonic tail 1e-3 bounds the RMS error."""
@@ -59,6 +60,7 @@ def test_collocation_only_within_its_tail_tolerance(slow_references, omega0, f_d
     assert abs(r.rms_dynamic - ref.rms_dynamic) <= 1e-3 * ref.rms_dynamic
 
 
+@pytest.mark.slow  # slow_references
 def test_trbdf2_within_its_tolerance_of_radau(slow_references):
     r = simulate(scene(5.0, 2.0, method="TRBDF2", start="quasistatic", ss_tol=1e-3, rtol=1e-4))
     ref = slow_references[(5.0, 2.0)]
@@ -72,6 +74,7 @@ def converged_refs():
     return {s: reference(plan, *s) for s in [(5.0, 2.0), (100.0, 30.0)]}
 
 
+@pytest.mark.slow  # converged_refs: N = 20, 40, 80 at tolerance 1e-7
 @pytest.mark.parametrize("s", [(5.0, 2.0), (100.0, 30.0)])
 def test_reference_converges(converged_refs, s):
     """Richardson limits from (20, 40) and (40, 80) agree to 3 digits (measured: 1.7e-7 and
@@ -84,6 +87,7 @@ def test_reference_converges(converged_refs, s):
     assert 3.0 < e40 / e80 < 5.0
 
 
+@pytest.mark.slow  # converged_refs
 @pytest.mark.parametrize("s", [(5.0, 2.0), (100.0, 30.0)])
 def test_richardson_default_within_half_a_percent(converged_refs, s):
     """The workflow default (N = 40 extrapolated with N = 20) meets the 0.5 % acceptance

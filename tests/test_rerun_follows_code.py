@@ -4,8 +4,8 @@ simulations run it; an edit to comments and docstrings only reruns nothing.
 
 The finished quick run is copied with the package beside it (the copy runs with PYTHONPATH on it),
 and the copy's modules are edited.  The expected rules are read off the scripts by hand, not by
-rotbeam.provenance: boundary.py is imported by boundary_table, c_per_threshold, fig4, fig6 and
-fig7, through report/surrogate_figures.py by the two surrogate rules, and through
+rotbeam.provenance: boundary.py is imported by boundary_table, boundary_grid, c_per_threshold,
+fig4, fig6 and fig7, through report/surrogate_figures.py by the two surrogate rules, and through
 analysis/hypotheses.py (fig7_variant_study) by the four study rules repro_* that import it and by
 reproduction (analysis/claims.py imports hypotheses).  table1 and c0_table read the printed values
 through analysis/paper_claims.py, which imports neither boundary nor the elastica."""
@@ -22,6 +22,7 @@ pytestmark = pytest.mark.slow  # needs the quick run, then four plans
 
 BOUNDARY_RULES = {
     "boundary_table",
+    "boundary_grid",
     "c_per_threshold",
     "fig4",
     "fig6",
@@ -34,7 +35,7 @@ BOUNDARY_RULES = {
     "repro_fn_zeta",
     "reproduction",
 }
-SIMULATIONS = {"sweep_line", "scene_series", "shapes"}
+SIMULATIONS = {"sweep_line", "sweep_grid_beam", "scene_series", "shapes"}
 
 
 def plan(work: Path) -> tuple[set[str], set[str], list[str]]:

@@ -18,6 +18,14 @@ from ..model.params import Beam
 from ..model.secondorder import c0_limit
 
 
+def lines_of(df: pd.DataFrame) -> list[pd.DataFrame]:
+    """The sweep lines in one file: a line per `c_max_target` (a grid beam's file holds all its
+    lines), or the whole frame when it has no such column (one line per file)."""
+    if "c_max_target" not in df or df.empty:
+        return [df]
+    return [line for _, line in df.groupby("c_max_target", sort=True)]
+
+
 def boundary_table(
     lines: Iterable[pd.DataFrame], thresholds: Iterable[float], beam: dict, beam_id: str = "ref"
 ) -> pd.DataFrame:

@@ -112,8 +112,9 @@ def run_grid_lines(
     beams: dict[str, dict[str, float]], spec: dict[str, Any], amplitude: float, effects, numerics,
     log: Callable[[str], None] | None = None,
 ) -> dict[str, list]:  # fmt: skip
-    """Every boundary line of a small grid in this process (one job per hypothesis instead of one
-    per line): per beam id, its line DataFrames."""
+    """Every boundary line of a grid in this process (one job per grid beam or per hypothesis
+    instead of one per line: a job's start-up, ~1 s of imports, costs more than a small line):
+    per beam id, its line DataFrames (column `c_max_target` names the line)."""
     from .sweeps import scan_line
 
     out = {}
@@ -125,6 +126,7 @@ def run_grid_lines(
                 log(f"{bid} {lid}")
             df = scan_line(Beam(**beam), ls["omega0"], scan_frequencies(ls), amplitude=amplitude,
                            effects=effects, numerics=numerics, log=log)  # fmt: skip
+            df.insert(0, "c_max_target", ls["c_max"])
             out[bid].append(df)
     return out
 

@@ -10,6 +10,8 @@ rule boundary_table:
         "logs/boundary_table/{beam}.log",
     benchmark:
         "benchmarks/boundary_table/{beam}.tsv"
+    wildcard_constraints:
+        beam=REF,  # the Fig. 7 grid beams: boundary_grid
     conda:
         "../envs/rotbeam.yaml"
     params:
@@ -18,6 +20,28 @@ rule boundary_table:
         beam=lambda w: config["beam"] if w.beam == REF else FIG7_BEAMS[w.beam],
     script:
         "../scripts/boundary_table.py"
+
+
+# Every Fig. 7 grid beam's boundary in one job (reading a beam's lines takes less than a job's
+# start-up); a threshold change reruns this and no simulation.
+rule boundary_grid:
+    input:
+        lines=expand("results/sims/{beam}/lines.csv", beam=sorted(FIG7_BEAMS)),
+    output:
+        expand("results/boundary/{beam}.csv", beam=sorted(FIG7_BEAMS)),
+    log:
+        "logs/boundary_grid.log",
+    benchmark:
+        "benchmarks/boundary_grid.tsv"
+    conda:
+        "../envs/rotbeam.yaml"
+    params:
+        code=code_version("boundary_grid"),
+        thresholds=sorted(set(config["thresholds"]) | {config["main_threshold"]}),
+        beam_ids=sorted(FIG7_BEAMS),
+        beams=FIG7_BEAMS,
+    script:
+        "../scripts/boundary_grid.py"
 
 
 rule c_per_threshold:

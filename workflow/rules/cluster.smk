@@ -5,6 +5,7 @@
 
 localrules:
     boundary_table,
+    boundary_grid,
     c_per_threshold,
     fig1,
     fig2,

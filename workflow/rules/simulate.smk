@@ -8,6 +8,8 @@ rule sweep_line:
         "logs/sweep_line/{beam}/{line}.log",
     benchmark:
         "benchmarks/sweep_line/{beam}/{line}.tsv"
+    wildcard_constraints:
+        beam=REF,  # the Fig. 7 grid beams run all their lines in one job (sweep_grid_beam)
     conda:
         "../envs/rotbeam.yaml"
     params:
@@ -17,6 +19,31 @@ rule sweep_line:
         effects=config["effects"],
     script:
         "../scripts/sweep_line.py"
+
+
+# One job per Fig. 7 grid beam (its 3-4 boundary lines of a few points each): a job's start-up
+# costs about as much as such a line.  Reruns follow the beam: a change of fig7's c_max, scan,
+# numerics or effects reruns every beam, a new E, L or h/L only the new beams.
+rule sweep_grid_beam:
+    output:
+        "results/sims/{beam}/lines.csv",
+    log:
+        "logs/sweep_grid_beam/{beam}.log",
+    benchmark:
+        "benchmarks/sweep_grid_beam/{beam}.tsv"
+    wildcard_constraints:
+        beam="E[^/]+",
+    conda:
+        "../envs/rotbeam.yaml"
+    params:
+        code=code_version("sweep_grid_beam"),
+        beam=lambda w: FIG7_BEAMS[w.beam],
+        spec={k: config["fig7"][k] for k in ("c_max", "lo", "hi", "points")},
+        amplitude=config["amplitude"],
+        numerics=config["numerics"],
+        effects=config["effects"],
+    script:
+        "../scripts/sweep_grid_beam.py"
 
 
 rule scene_series:
