@@ -82,6 +82,7 @@ def test_qs_bias_of_five_percent_moves_c_toward_the_paper(ours):
         assert biased["c"][th] == pytest.approx(paper[th], abs=0.006)
 
 
+@pytest.mark.slow  # a c study of its own: ~25 s
 def test_dynamic_midspan_at_19_of_39_raises_c_by_the_measured_amount(ours):
     """'N = 40 nodes' as 39 intervals with y_m read at node 20 counting the clamp as 1
     (s = 19/39): c rises by 0.05-0.08 (measured at N = 40: 0.301, 0.331, 0.371, 0.396)."""
@@ -91,6 +92,7 @@ def test_dynamic_midspan_at_19_of_39_raises_c_by_the_measured_amount(ours):
     assert r["c"][0.10] == pytest.approx(0.371, abs=0.006)
 
 
+@pytest.mark.slow  # ~40 s
 def test_printed_bracket_is_obviously_wrong_at_low_frequency():
     """With the printed tension bracket the dynamic model carries ~35 % more Euler load than the
     continuum quasi-static answer: Delta RMS ~ 0.35 at f_d -> 0, every threshold trips at the
@@ -102,6 +104,7 @@ def test_printed_bracket_is_obviously_wrong_at_low_frequency():
     assert r["notes"]
 
 
+@pytest.mark.slow  # two c studies through the printed appendix: ~60 s
 def test_printed_U3_and_symmetric_S_change_c_by_about_a_thousandth():
     """Against the same continuum QS (N = 40 measured: +0.0006; coarser here at N = 20)."""
     ref = run("continuum_qs")

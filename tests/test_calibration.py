@@ -235,6 +235,7 @@ def test_identify_interval_coverage_linearised(chain_fit):
 
 
 # --- uncertainty ---------------------------------------------------------------------------
+@pytest.mark.slow  # two uncertainty runs: ~20 s
 def test_zero_spread_equals_plain_run():
     plain = run("simulate", "--omega0", "5", "--fd", "2", "--N", "10", "--json")
     for method in ("linear", "sobol"):
@@ -249,6 +250,7 @@ def test_zero_spread_equals_plain_run():
         assert u["p_quasistatic"] == float(ref["quasistatic_ok"])
 
 
+@pytest.mark.slow  # CLI runs with sampling: ~15 s
 def test_uncertainty_section_of_scene_file(tmp_path):
     s = tmp_path / "s.yaml"
     s.write_text(
