@@ -9,7 +9,15 @@ import subprocess
 import sys
 from pathlib import Path
 
-import pytest
+# One BLAS thread per pytest worker, set before numpy loads OpenBLAS: the suite runs on two
+# workers (-n 2) on two cores, and each worker's default two BLAS threads then spin against the
+# other's.  Measured: the Duffing fold test takes 20.8 s of CPU with the default, 2.6 s with one
+# thread (the matrices here, n <= 160, gain nothing from threads).  The workflow's jobs set the
+# same (Snakefile).
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+os.environ.setdefault("OMP_NUM_THREADS", "1")
+
+import pytest  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 WORKFLOW_FILES = ("Snakefile", "config", "workflow", "profiles")  # profiles: the workflow profile

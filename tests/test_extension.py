@@ -48,11 +48,13 @@ def test_extension_off_is_bit_identical_to_the_inextensible_code():
 
 
 def test_extension_off_benchmark_rms_unchanged():
-    """RMS(y_m) at Omega_0 = 5 rad/s, f_d = 2 Hz, N = 12 as main's code gives it (to the bit)."""
+    """RMS(y_m) at Omega_0 = 5 rad/s, f_d = 2 Hz, N = 12 as the code before `extension` (commit
+    642035f) gives it, to the bit, with one BLAS thread as the suite runs (conftest; with two
+    threads that code gives ...598 in the last digits, and so does this one)."""
     from rotbeam.simulate.scene import build_scene, simulate
 
     r = simulate(build_scene({"drive": {"omega0": 5.0, "f_d": 2.0}, "numerics": {"N": 12}}))
-    assert r.rms_dynamic == 0.010556175036492598
+    assert r.rms_dynamic == 0.010556175036492595
     assert r.rms_quasistatic == 0.009654891687129971
 
 
