@@ -204,6 +204,7 @@ def order(a: float, b: float, c: float) -> float:
 
 
 # --- 1. fast rotation ---------------------------------------------------------------------------
+@pytest.mark.slow  # 20-30 s per speed
 @pytest.mark.parametrize(
     "omega0",
     [omega0_for_cmax(REF, 787.0), 200.0],
@@ -356,6 +357,7 @@ def test_fast_drive_mass_controlled():
 
 
 # --- 3. fine grids ------------------------------------------------------------------------------
+@pytest.mark.slow  # N up to 160: about a minute
 def test_fine_grids_second_order():
     """N = 40, 80, 160 at Omega_0 = 5 rad/s, f_d = 2 Hz (r = f_d / f_1 = 0.3).
 
@@ -528,6 +530,7 @@ def test_undamped_without_euler_load_is_exactly_straight():
 
 
 # --- 7. tiny and huge beams -----------------------------------------------------------------------
+@pytest.mark.slow  # about 30 s
 def test_tiny_stiff_overdamped_beam():
     """L = 0.1 mm, E = 1 GPa, h/L = 0.01 (Fig. 7 grid): f_n = 14.9 kHz, zeta = 35.5, R/L = 1550.
 
