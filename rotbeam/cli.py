@@ -584,11 +584,12 @@ def _beam_from_scene(path: str | None):
 
 def cmd_damping(args: argparse.Namespace) -> int:
     from .analysis.measurements import load_ringdown
-    from .analysis.ringdown import RingdownRejected, fit_ringdown
 
     _check_plot_flag(args.plot)
     beam = _beam_from_scene(args.scene).beam
-    data = load_ringdown(args.file)
+    data = load_ringdown(args.file)  # a bad file fails here, before scipy.signal is loaded
+    from .analysis.ringdown import RingdownRejected, fit_ringdown
+
     try:
         fit = fit_ringdown(data, beam)
     except RingdownRejected as exc:
