@@ -60,17 +60,7 @@ def largest_lyapunov(
     v = rng.standard_normal(d) if v0 is None else np.asarray(v0, dtype=float).copy()
     v /= np.linalg.norm(v)
     atol = np.broadcast_to(np.asarray(atol, dtype=float), (d,))
-
-    def aug(t, y):
-        return np.concatenate([rhs(t, y[:d]), jac(t, y[:d]) @ y[d:]])
-
-    def aug_jac(t, y):
-        J = jac(t, y[:d])
-        A = np.zeros((2 * d, 2 * d))
-        A[:d, :d] = J
-        A[d:, d:] = J
-        return A
-
+    aug, aug_jac = tangent_system(rhs, jac, d)
     kwargs = {"jac": aug_jac} if method in ("Radau", "BDF", "LSODA") else {}
     logs, section, samples = [], [z.copy()], []
     msg = ""
@@ -96,6 +86,31 @@ def largest_lyapunov(
         if deadline is not None and time.perf_counter() > deadline:
             msg = f"stopped by the time budget after {k + 1} of {intervals} intervals"
             break
+    return benettin_result(logs, interval, section, samples, time.perf_counter() - start, msg)
+
+
+def tangent_system(rhs: Callable, jac: Callable, d: int) -> tuple[Callable, Callable]:
+    """The state and one tangent vector together, y = (z, v): y' = (f(t, z), J(t, z) v), and
+    the Jacobian of that system (block diagonal, J twice) for the implicit steppers."""
+
+    def aug(t, y):
+        return np.concatenate([rhs(t, y[:d]), jac(t, y[:d]) @ y[d:]])
+
+    def aug_jac(t, y):
+        J = jac(t, y[:d])
+        A = np.zeros((2 * d, 2 * d))
+        A[:d, :d] = J
+        A[d:, d:] = J
+        return A
+
+    return aug, aug_jac
+
+
+def benettin_result(
+    logs: list[float], interval: float, section: list, samples: list, seconds: float, msg: str
+) -> LyapunovResult:
+    """The running estimate (mean log growth per unit time after each interval), the exponent
+    (its last value) and its spread over the second half of the intervals (the convergence)."""
     K = len(logs)
     running = np.cumsum(logs) / (interval * np.arange(1, K + 1)) if K else np.array([])
     half = running[K // 2 :] if K else np.array([math.nan])
@@ -106,7 +121,7 @@ def largest_lyapunov(
         interval=interval,
         running=running,
         section=np.array(section),
-        seconds=time.perf_counter() - start,
+        seconds=seconds,
         message=msg or f"{K} intervals",
         samples=samples,
     )
