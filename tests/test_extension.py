@@ -201,3 +201,32 @@ def test_first_order_jacobian_with_extension_matches_finite_differences(coriolis
     assert np.abs(m0.first_order_jacobian(th, tt, 1.3, 0.7) - J).max() > 1e-2 * np.abs(J).max()
     rows, jac = m.load_torque_rows(th[None], [1.3], [0.7], jacobian=True)
     np.testing.assert_allclose(jac[0], m.load_torque_jacobian(th, 1.3, 0.7), atol=1e-13)
+
+
+# --- the stretch study of the claims table (rotbeam.analysis.stretch_study) ------------------
+
+
+def test_clamp_strain_against_first_order_closed_form():
+    """Small strain: N/(EA) at the clamp -> rho Omega_s^2 L^2 (R_o/L + 1/2) / E, with Omega_s^2
+    = Omega_0^2 + a^2/2 the period mean the model freezes the stretch at; the exact strain is
+    above it by O(eps^2) (the stretched beam's own centrifugal load)."""
+    from rotbeam.analysis.stretch_study import clamp_strain
+
+    b = Beam()
+    for omega0 in (5.0, 30.0):
+        first = b.rho * (omega0**2 + 0.5) * b.L**2 * ((b.R - b.L) / b.L + 0.5) / b.E
+        eps = clamp_strain(b, omega0, 1.0)
+        assert first < eps < first * (1 + 3 * first), (omega0, eps, first)
+
+
+def test_inextensible_limit_interpolates_in_log_log():
+    """|f_d* change| proportional to C_max through 0.5 % at 100 and 2 % at 400: 1 % at 200."""
+    import pandas as pd
+
+    from rotbeam.analysis.stretch_study import inextensible_limit
+
+    t = pd.DataFrame({"C_max": [10.0, 100.0, 400.0], "studied": [True, True, True],
+                      "f_d_star_change": [-5e-4, -5e-3, -2e-2]})  # fmt: skip
+    assert inextensible_limit(t, 0.01) == pytest.approx(200.0, rel=1e-9)
+    assert inextensible_limit(t, 0.1) == math.inf
+    assert inextensible_limit(t, 1e-4) == 10.0
