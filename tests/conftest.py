@@ -119,10 +119,13 @@ def numerical_first_order_jacobian(model, theta, theta_t, lam: float, lam_dot: f
     return np.array([(F(z + h * e) - F(z - h * e)) / (2 * h) for e in np.eye(2 * n)]).T
 
 
+@pytest.hookimpl(tryfirst=True)
 def pytest_collection_modifyitems(config, items) -> None:
     """With pytest-xdist (`-n 2 --dist loadgroup`, README's test command): a test file runs on
     one worker (its module fixtures are built once), and every test of the quick run shares one
-    worker (the run is built once)."""
+    worker (the run is built once).  tryfirst: the worker's own hook, which reads the marks into
+    the node ids the scheduler groups by, runs before this one otherwise, and the groups are lost
+    (measured: test_bench's module fixture built on both workers, 100 s each)."""
     for item in items:
         group = "quick_run" if "quick_run" in item.fixturenames else item.module.__name__
         item.add_marker(pytest.mark.xdist_group(group))
