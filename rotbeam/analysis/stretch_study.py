@@ -19,7 +19,7 @@ import numpy as np
 import pandas as pd
 
 from ..model.elastica import centrifugal_strain
-from ..model.params import Beam, Dimensionless, Drive, Effects
+from ..model.params import Beam, Dimensionless, Drive, Effects, omega0_for_cmax
 from ..simulate.scene import Scene, simulate
 from ..solve.numerics import Numerics
 from .verdict import critical_frequency
@@ -27,11 +27,6 @@ from .verdict import critical_frequency
 COLUMNS = ["C_max", "omega0", "clamp_strain", "studied", "f_d_star_off", "f_d_star_on",
            "f_d_star_change", "rms_off", "rms_on", "rms_change", "delta_off", "delta_on",
            "delta_change", "seconds"]  # fmt: skip
-
-
-def omega0_of(beam: Beam, c_max: float, amplitude: float) -> float:
-    """Omega_0 of the line C_max = G (Omega_0 + a)^2."""
-    return math.sqrt(c_max / beam.derived()["G"]) - amplitude
 
 
 def clamp_strain(beam: Beam, omega0: float, amplitude: float) -> float:
@@ -46,7 +41,7 @@ def stretch_line(beam: Beam, c_max: float, amplitude: float, threshold: float, e
                  numerics: Numerics, rtol: float = 1e-3) -> dict[str, float]:  # fmt: skip
     """One studied line: f_d* off and on, RMS and Delta RMS off and on at the f_d* of `off`."""
     t0 = time.perf_counter()
-    w0 = omega0_of(beam, c_max, amplitude)
+    w0 = omega0_for_cmax(beam, c_max, amplitude)
     off, on = replace(effects, extension=False), replace(effects, extension=True)
     crit = {k: critical_frequency(beam, w0, threshold, amplitude, e, numerics, rtol)
             for k, e in (("off", off), ("on", on))}  # fmt: skip
@@ -73,7 +68,7 @@ def stretch_study(beam: Beam, c_max: list[float], studied: list[float], amplitud
     (NaN elsewhere). Studied C_max need not be among the lines; they are added."""
     rows = []
     for c in sorted(set(map(float, c_max)) | set(map(float, studied))):
-        w0 = omega0_of(beam, c, amplitude)
+        w0 = omega0_for_cmax(beam, c, amplitude)
         row = {k: math.nan for k in COLUMNS}
         row.update(C_max=c, omega0=w0, clamp_strain=clamp_strain(beam, w0, amplitude),
                    studied=c in set(map(float, studied)), seconds=0.0)  # fmt: skip

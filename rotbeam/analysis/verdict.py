@@ -189,10 +189,14 @@ def critical_start_hz(beam: Beam, omega0: float, threshold: float = 0.10,
                       amplitude: float = 1.0) -> float:  # fmt: skip
     """Where `critical_frequency` starts: the linear estimate of f_d* [Hz] (`linear_estimate`
     times f_0 at omega0 + amplitude); `rotbeam critical --effects auto` budgets the effects here."""
-    th = check_threshold(threshold)
-    return linear_estimate(beam.derived()["zeta"], th)[1] * resonance_frequency_hz(
-        beam, omega0, amplitude
+    return _linear_start(
+        beam, check_threshold(threshold), resonance_frequency_hz(beam, omega0, amplitude)
     )
+
+
+def _linear_start(beam: Beam, threshold: float, f0: float) -> float:
+    """App. E's c_0 (or the lag branch) at the beam's zeta, times f_0 [Hz]."""
+    return linear_estimate(beam.derived()["zeta"], threshold)[1] * f0
 
 
 def critical_frequency(
@@ -223,7 +227,7 @@ def critical_frequency(
         raise RotbeamInputError(f"rtol must be in [1e-8, 0.1], got {rtol!r}")
     t0 = time.perf_counter()
     f0 = resonance_frequency_hz(beam, omega0, amplitude)
-    start = estimate = linear_estimate(beam.derived()["zeta"], th)[1] * f0
+    start = estimate = _linear_start(beam, th, f0)
     excess = _Excess(beam, omega0, amplitude, effects, numerics, th)
 
     def done(found: bool, f: float, msg: str) -> Critical:
