@@ -53,6 +53,9 @@ class ResponseResult:
     seconds: float
     message: str
     distances: list[float] = field(default_factory=list)  #: d(q), q = 1..MAX_SUBHARMONIC
+    #: the exponent's running estimate after each section period [1/s] (its convergence)
+    lyapunov_running: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    start: str = "quasistatic"  #: initial state of the run (`rotbeam.solve.steady.initial_state`)
 
     def as_dict(self) -> dict:
         return {"response": self.response, "lyapunov_max": self.lyapunov_max,
@@ -118,8 +121,14 @@ def response_of(
     max_seconds: float = 1800.0,
     rtol: float = 1e-7,
     tol: float = 1e-3,
+    start: str = "quasistatic",
 ) -> ResponseResult:
-    """Time-step the scene past its transient and classify what it settles into."""
+    """Time-step the scene past its transient and classify what it settles into.
+
+    `start`: "quasistatic" (default) or "rest" (or "linear"), the state at t = 0.
+    """
+    if start not in ("quasistatic", "rest", "linear"):
+        raise ValueError(f"start must be quasistatic, rest or linear, got {start!r}")
     t0 = time.perf_counter()
     N = N or scene.numerics.N
     dl = scene.dimensionless
@@ -131,8 +140,9 @@ def response_of(
     def jac(t, z):
         return model.first_order_jacobian(z[:n], z[n:], dl.lam(t), dl.lam_dot(t))
 
-    z, _ = initial_state(model, dl, "quasistatic")
-    scale = max(float(np.max(np.abs(z[:n]))), 1e-6)
+    z, _ = initial_state(model, dl, start)
+    qs, _ = initial_state(model, dl, "quasistatic")  # the tolerances' scale, also from rest
+    scale = max(float(np.max(np.abs(qs[:n]))), 1e-6)
     atol = np.concatenate(
         [np.full(n, 1e-3 * rtol * scale), np.full(n, 1e-3 * rtol * scale * dl.omega)]
     )
@@ -153,7 +163,7 @@ def response_of(
     f, amp, peaks = _spectrum(y_all, P * T / SAMPLES)
     periods = transient_periods + ly.intervals
     msg = (f"{response}{f' (period {q} P)' if q > 1 else ''}: {periods} periods at N={N} "
-           f"({transient_periods} transient), largest Lyapunov exponent "
+           f"({transient_periods} transient, from {start}), largest Lyapunov exponent "
            f"{ly.exponent / T:.3g} +- {ly.spread / T:.2g} 1/s, section distance d(1)={dist[0]:.2g}"
            + (f"; {ly.message}" if "stopped" in ly.message or "failed" in ly.message
               else ""))  # fmt: skip
@@ -171,4 +181,6 @@ def response_of(
         seconds=time.perf_counter() - t0,
         message=msg,
         distances=dist,
+        lyapunov_running=np.asarray(ly.running, dtype=float) / T,
+        start=start,
     )

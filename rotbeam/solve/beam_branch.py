@@ -134,18 +134,24 @@ def beam_branch(
     p_scale: float = 1.0,
     x_scale: float | None = None,
     on_point=None,
+    direction: float = 1.0,
+    stop=None,
 ) -> BeamBranch:
-    """Pseudo-arclength continuation of the orbit at f_range[0] up in f_d to f_range[1] [Hz].
+    """Pseudo-arclength continuation of the orbit at the low end of f_range [Hz] up in f_d
+    (direction > 0), or of the orbit at the high end down (direction < 0); `stop(branch)`, if
+    given, ends it early (`continue_branch`).
 
     The arclength weights: f_d by 1 / p_scale [1/Hz], the orbit by x_scale / sqrt(dim x) with
     x_scale = 1 / (RMS of the start orbit's Theta) by default, so a step ds moves the orbit by
     about ds times its own size or f_d by about ds p_scale.
     """
     lo, hi = min(f_range), max(f_range)
-    problem, x0, tail = start_orbit(beam, omega0, amplitude, lo, effects, N, tail_tol)
+    f0 = lo if direction > 0 else hi
+    problem, x0, tail = start_orbit(beam, omega0, amplitude, f0, effects, N, tail_tol)
     if x_scale is None:
         size = float(np.sqrt(np.mean(x0 * x0)))
         x_scale = 1.0 / size if size > 0 else 1.0
-    br = continue_branch(problem, x0, lo, (lo, hi), ds=ds, ds_max=ds_max, max_points=max_points,
-                         p_scale=p_scale, x_scale=x_scale, on_point=on_point)  # fmt: skip
+    br = continue_branch(problem, x0, f0, (lo, hi), ds=ds, ds_max=ds_max, max_points=max_points,
+                         p_scale=p_scale, x_scale=x_scale, on_point=on_point,
+                         direction=1.0 if direction > 0 else -1.0, stop=stop)  # fmt: skip
     return BeamBranch(problem, br, tail)

@@ -204,8 +204,10 @@ def continue_branch(
     direction: float = 1.0,
     tol: float = 1e-9,
     on_point: Callable[[BranchPoint], None] | None = None,
+    stop: Callable[[Branch], bool] | None = None,
 ) -> Branch:
-    """Follow the orbit x0 at p0 (converged first) while p stays in p_range."""
+    """Follow the orbit x0 at p0 (converged first) while p stays in p_range (and, if given,
+    until `stop(branch)` is true after a point)."""
     branch = Branch()
     x, ok = newton(problem, np.asarray(x0, dtype=float), p0)
     if not ok:
@@ -238,6 +240,9 @@ def continue_branch(
         _detect(branch, arc)
         if not lo <= y[-1] <= hi:
             branch.message = f"left the range at p = {y[-1]:.6g}"
+            break
+        if stop is not None and stop(branch):
+            branch.message = f"stopped as asked at p = {y[-1]:.6g}"
             break
         if iters <= 4:
             ds = min(ds * 1.3, ds_max)
