@@ -26,6 +26,7 @@ include: "workflow/rules/reproduction.smk"
 include: "workflow/rules/about.smk"
 include: "workflow/rules/cluster.smk"
 include: "workflow/rules/c_hypotheses.smk"
+include: "workflow/rules/nonlinear.smk"
 
 
 rule all:

@@ -1,0 +1,97 @@
+"""The nonlinear resonance: branches of periodic orbits (stable solid, unstable dashed, folds and
+period doublings marked) beside the sweeps that follow the beam, one panel per amplitude; and
+the response at one scene from rest (section and the Lyapunov exponent's convergence)."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from .style import ACCENT, DYN, GREY, QS, figure, save
+
+MARKS = {"fold": ("o", "k"), "period doubling": ("s", "#9467bd")}
+
+
+def _segments(arm: pd.DataFrame):
+    """Runs of consecutive points with the same stability (each run joined to the next point)."""
+    stable = arm["stable"].to_numpy(bool)
+    start = 0
+    for k in range(1, len(arm) + 1):
+        if k == len(arm) or stable[k] != stable[start]:
+            yield arm.iloc[start : min(k + 1, len(arm))], bool(stable[start])
+            start = k
+
+
+def _crossings(arm: pd.DataFrame):
+    """(f_d, rms, kind) of the folds (a real multiplier through +1) and period doublings
+    (through -1) the continuation detected, at the point after each."""
+    for _, r in arm.iterrows():
+        kinds = str(r["bifurcation"]) if isinstance(r["bifurcation"], str) else ""
+        for kind in MARKS:
+            if kind in kinds.split("+"):
+                yield r["f_d"], r["rms_ym"], kind
+
+
+def _panel(ax, rows: pd.DataFrame, folds: pd.DataFrame, a: float) -> None:
+    br = rows[rows["kind"] == "branch"]
+    for name, color in (("from_below", DYN), ("from_above", ACCENT)):
+        arm = br[br["arm"] == name].sort_values("index")
+        for seg, stable in _segments(arm):
+            ax.plot(seg["f_d"], seg["rms_ym"], color=color, ls="-" if stable else "--", lw=1.2)
+        for f, y, kind in _crossings(arm):
+            m, c = MARKS[kind]
+            ax.plot(f, y, m, mfc="none", mec=c, ms=6)
+    for name, m, color in (("up", "^", QS), ("down", "v", GREY)):
+        sw = rows[(rows["kind"] == "sweep") & (rows["arm"] == name)]
+        ax.plot(sw["f_d"], sw["rms_ym"], m, color=color, ms=4, ls="none", label=f"sweep {name}")
+    for _, fr in folds[folds["amplitude"] == a].iterrows():
+        if math.isfinite(fr["f_loss"]):
+            ax.axvline(fr["f_loss"], color=GREY, ls=":", lw=0.8)
+    ax.set_title(f"a = {a:g} rad/s", loc="left")
+    ax.set_xlabel("$f_d$ [Hz]")
+    ax.set_ylabel("RMS $y_m / L$")
+
+
+def branches_figure(rows: pd.DataFrame, folds: pd.DataFrame, omega0: float, pdf, png) -> None:
+    """One panel per amplitude: both arms of the branch and both sweeps."""
+    amps = sorted(rows["amplitude"].unique())
+    ncols = min(2, len(amps))
+    nrows = int(np.ceil(len(amps) / ncols))
+    fig, axes = figure(nrows, ncols, width=4.6 * ncols, height=3.4 * nrows, squeeze=False)
+    for ax, a in zip(axes.ravel(), amps, strict=False):
+        _panel(ax, rows[rows["amplitude"] == a], folds, a)
+    for ax in axes.ravel()[len(amps) :]:
+        ax.set_visible(False)
+    h = [
+        axes[0, 0].plot([], [], color=DYN)[0],
+        axes[0, 0].plot([], [], color=ACCENT)[0],
+        axes[0, 0].plot([], [], color="k", ls="--")[0],
+        axes[0, 0].plot([], [], "o", mfc="none", mec="k")[0],
+        axes[0, 0].plot([], [], "s", mfc="none", mec=MARKS["period doubling"][1])[0],
+        axes[0, 0].plot([], [], "^", color=QS)[0],
+        axes[0, 0].plot([], [], "v", color=GREY)[0],
+    ]
+    labels = ["branch from below (stable)", "branch from above (stable)", "unstable",
+              "fold (mu through +1)", "period doubling (mu through -1)", "sweep up",
+              "sweep down"]  # fmt: skip
+    fig.legend(h, labels, loc="outside lower center", ncols=4)
+    fig.suptitle(rf"Periodic orbits and sweeps at $\Omega_0$ = {omega0:g} rad/s")
+    save(fig, Path(pdf), Path(png))
+
+
+def response_figure(section: np.ndarray, running: np.ndarray, f_d: float, title: str, png) -> None:
+    """Stroboscopic section beside the running Lyapunov exponent (per second) against periods."""
+    fig, (a1, a2) = figure(1, 2, width=9.0, height=3.6)
+    a1.plot(section[:, 0], section[:, 1], ".", color=DYN, ms=3)
+    a1.set_xlabel("$y_m / L$ at $t = k / f_d$")
+    a1.set_ylabel(r"$\dot y_m / L$ [1/s]")
+    a1.set_title(f"Poincare section ({section.shape[0]} periods)", loc="left")
+    a2.plot(np.arange(1, running.size + 1), running, color=DYN)
+    a2.axhline(0.0, color=GREY, lw=0.8)
+    a2.set_xlabel(f"periods of the section (1 / {f_d:g} Hz)")
+    a2.set_ylabel(r"running $\lambda_{max}$ [1/s]")
+    fig.suptitle(title)
+    save(fig, Path(png))

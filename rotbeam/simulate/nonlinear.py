@@ -1,0 +1,242 @@
+r"""Large drive around the first resonance: the branch of periodic orbits in f_d beside time-stepped
+sweeps that follow the beam (the workflow target ``nonlinear``, docs/stability.md).
+
+For one drive amplitude a at mean speed Omega_0:
+
+* two **arms** of the branch (`rotbeam.solve.beam_branch`): the orbit at f_lo continued up
+  (``from_below``) and the orbit at f_hi continued down (``from_above``), each ended `beyond`
+  points after its first unstable point (past it the large orbits tangle: docs/stability.md);
+* two **sweeps** by time stepping, up from f_lo and down from f_hi in steps of `sweep_step`,
+  each point started from the state the previous one ended in (`steady_state(state0=...)`);
+* the **check**: an arm's first loss of stability (fold: a real multiplier through +1; period
+  doubling: through -1; torus: a complex pair) is where the sweep in the same direction leaves
+  that arm (`departure`): it agrees when it lies between the sweep's last point on the arm and
+  its first point off it (one sweep step).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..model.criterion import rms
+from ..model.params import Beam, Dimensionless, Drive, Effects
+from ..solve.beam_branch import BeamBranch, beam_branch
+from ..solve.continuation import Branch
+from ..solve.numerics import Numerics
+from ..solve.steady import steady_state
+
+ARMS = {"from_below": 1.0, "from_above": -1.0}
+SWEEPS = {"up": 1.0, "down": -1.0}
+#: the sweep that leaves the branch an arm follows: up leaves the arm from below, down the other
+SWEEP_OF_ARM = {"from_below": "up", "from_above": "down"}
+
+
+@dataclass(frozen=True)
+class NonlinearSpec:
+    """One amplitude's branch and sweeps (the config section ``nonlinear`` with one a)."""
+
+    omega0: float  #: Omega_0 [rad/s]
+    amplitude: float  #: a [rad/s]
+    f_lo: float  #: [Hz]
+    f_hi: float  #: [Hz]
+    N: int = 8  #: grid intervals (branch and sweeps)
+    tail_tol: float = 1e-4  #: harmonic tail that fixes M at an arm's first orbit
+    ds: float = 0.02  #: first arclength step
+    ds_max: float = 0.1  #: largest arclength step
+    max_points: int = 300  #: per arm
+    beyond: int = 15  #: points an arm keeps after its first unstable one
+    sweep_step: float = 0.05  #: [Hz]
+    rtol: float = 1e-5  #: time stepper of the sweeps
+    ss_tol: float = 1e-3  #: steady-state tolerance of the sweeps
+    max_periods: int = 400  #: per sweep point
+
+    def frequencies(self, direction: float) -> np.ndarray:
+        """The sweep's drive frequencies, in the order it visits them."""
+        k = int(math.floor((self.f_hi - self.f_lo) / self.sweep_step + 1e-9))
+        f = self.f_lo + self.sweep_step * np.arange(k + 1)
+        return f if direction > 0 else f[::-1]
+
+
+def _stop_after_unstable(beyond: int):
+    """Stop an arm `beyond` points after its first unstable point."""
+
+    def stop(branch: Branch) -> bool:
+        first = next((i for i, pt in enumerate(branch.points) if not pt.stable), None)
+        return first is not None and len(branch.points) - 1 - first >= beyond
+
+    return stop
+
+
+def branch_arm(beam: Beam, spec: NonlinearSpec, arm: str, effects: Effects) -> BeamBranch:
+    """One arm of the branch (`ARMS`), stopped `spec.beyond` points past its first instability."""
+    return beam_branch(beam, spec.omega0, spec.amplitude, (spec.f_lo, spec.f_hi), effects,
+                       N=spec.N, tail_tol=spec.tail_tol, ds=spec.ds, ds_max=spec.ds_max,
+                       max_points=spec.max_points, direction=ARMS[arm],
+                       stop=_stop_after_unstable(spec.beyond))  # fmt: skip
+
+
+def first_instability(bb: BeamBranch) -> dict:
+    """Where the arm first loses stability: the kind (fold | period doubling | torus), its f_d
+    (the bifurcation's estimate at that step, else the mean of the two points), the first fold
+    on the arm, and the points' f_d on either side."""
+    pts = bb.branch.points
+    i = next((k for k, pt in enumerate(pts) if not pt.stable), None)
+    folds = [b for b in bb.branch.bifurcations if b.kind == "fold"]
+    out = {"kind": "none", "f_loss": math.nan, "f_stable": math.nan, "f_unstable": math.nan,
+           "f_fold": folds[0].p if folds else math.nan}  # fmt: skip
+    if i is None or i == 0:
+        return out
+    at = [b for b in bb.branch.bifurcations if b.index == i]
+    kinds = [b.kind for b in at]
+    kind = next((k for k in ("fold", "period doubling", "torus") if k in kinds), "none")
+    f = next((b.p for b in at if b.kind == kind), 0.5 * (pts[i - 1].p + pts[i].p))
+    out.update(kind=kind, f_loss=f, f_stable=pts[i - 1].p, f_unstable=pts[i].p)
+    return out
+
+
+def arm_rows(bb: BeamBranch, arm: str, amplitude: float) -> list[dict]:
+    """The arm's points (`BeamBranch.rows`) with its name, a, the grid, and the bifurcations the
+    continuation detected between each point and the one before (kinds joined by "+")."""
+    found: dict[int, list[str]] = {}
+    for b in bb.branch.bifurcations:
+        found.setdefault(b.index, []).append(b.kind)
+    return [
+        {"amplitude": amplitude, "kind": "branch", "arm": arm, "N": bb.problem.N,
+         "M": bb.problem.M, **row, "bifurcation": "+".join(found.get(row["index"], []))}
+        for row in bb.rows()
+    ]  # fmt: skip
+
+
+def sweep_numerics(spec: NonlinearSpec) -> Numerics:
+    return Numerics(N=spec.N, rtol=spec.rtol, ss_tol=spec.ss_tol, max_periods=spec.max_periods,
+                    max_tau=1e9, max_seconds=1e9, start="periodic")  # fmt: skip
+
+
+def follow_sweep(beam: Beam, spec: NonlinearSpec, sweep: str, effects: Effects) -> list[dict]:
+    """Time stepping along `spec.frequencies`: the first point from its collocated orbit, every
+    next one from the state the previous one ended in.  One row per point (RMS and max of
+    y_m / L over the last period, status, periods, |mu|max of the orbit reached, CPU s)."""
+    num = sweep_numerics(spec)
+    rows, state = [], None
+    for f in spec.frequencies(SWEEPS[sweep]):
+        cpu = time.process_time()
+        dl = Dimensionless.from_physical(
+            beam, Drive(omega0=spec.omega0, f_d=float(f), amplitude=spec.amplitude), effects
+        )
+        ss = steady_state(dl, num, state0=state)
+        state = ss.state if ss.state is not None else state
+        rows.append(
+            {"amplitude": spec.amplitude, "kind": "sweep", "arm": sweep, "N": spec.N,
+             "f_d": float(f), "rms_ym": rms(ss.y_m), "max_ym": float(np.max(np.abs(ss.y_m))),
+             "max_theta": float(np.max(np.abs(ss.theta))), "status": ss.status,
+             "periods": ss.periods,
+             "floquet_max": ss.floquet.max_abs if ss.floquet is not None else math.nan,
+             "stable": bool(ss.floquet.stable) if ss.floquet is not None else False,
+             "seconds": time.process_time() - cpu}
+        )  # fmt: skip
+    return rows
+
+
+def largest_jump(rows: list[dict]) -> dict:
+    """The consecutive pair of sweep points with the largest |change of RMS|: the two f_d (in
+    the sweep's order), the change, and its share of the sweep's RMS range."""
+    y = np.array([r["rms_ym"] for r in rows])
+    f = np.array([r["f_d"] for r in rows])
+    if y.size < 2:
+        return {"f_before": math.nan, "f_after": math.nan, "jump": 0.0, "share": 0.0}
+    d = np.diff(y)
+    k = int(np.argmax(np.abs(d)))
+    span = float(np.ptp(y)) or 1.0
+    return {"f_before": float(f[k]), "f_after": float(f[k + 1]), "jump": float(d[k]),
+            "share": float(abs(d[k]) / span)}  # fmt: skip
+
+
+def hysteresis(up: list[dict], down: list[dict], tol: float = 0.1) -> list[float]:
+    """Drive frequencies where the up and down sweeps' RMS differ by more than tol times the
+    largest RMS (the two sweeps are on different attractors there)."""
+    down_at = {round(r["f_d"], 9): r["rms_ym"] for r in down}
+    top = max(r["rms_ym"] for r in up + down)
+    out = []
+    for r in up:
+        other = down_at.get(round(r["f_d"], 9), r["rms_ym"])
+        if abs(r["rms_ym"] - other) > tol * top:
+            out.append(r["f_d"])
+    return out
+
+
+def departure(bb: BeamBranch, sweep_rows: list[dict], tol: float = 0.02) -> tuple[float, float]:
+    """Where the sweep leaves the arm's stable part (the points before its first unstable one):
+    (f_d of the last sweep point on it, f_d of the first one off it), in the sweep's order.  A
+    point is on it when its f_d lies in the stable part's range and its RMS is within `tol`
+    (relative) of the stable part's RMS interpolated there; (nan, nan) if it never leaves."""
+    pts = bb.branch.points
+    i = next((k for k, pt in enumerate(pts) if not pt.stable), len(pts))
+    f = np.array([pt.p for pt in pts[:i]])
+    y = np.array([rms(bb.problem.midspan(pt.x, pt.p)) for pt in pts[:i]])
+    order = np.argsort(f)
+    f, y = f[order], y[order]
+    last = math.nan
+    for r in sweep_rows:
+        on = f.size > 0 and f[0] - 1e-9 <= r["f_d"] <= f[-1] + 1e-9
+        if on:
+            ref = float(np.interp(r["f_d"], f, y))
+            on = abs(r["rms_ym"] - ref) <= tol * ref
+        if not on:
+            return last, float(r["f_d"])
+        last = float(r["f_d"])
+    return math.nan, math.nan
+
+
+def fold_row(bb: BeamBranch, arm: str, sweep_rows: list[dict], spec: NonlinearSpec) -> dict:
+    """One row of the folds table: where the arm first loses stability against where the sweep
+    in the same direction leaves the arm (`departure`); `distance` is how far (Hz) the loss lies
+    outside that interval (0 inside), `agrees` when it lies inside.  The sweep's largest jump
+    (`largest_jump`) is reported beside it."""
+    loss = first_instability(bb)
+    on, off = departure(bb, sweep_rows)
+    jump = largest_jump(sweep_rows)
+    f = loss["f_loss"]
+    lo, hi = sorted((on, off))
+    dist = max(lo - f, f - hi, 0.0) if math.isfinite(f) and math.isfinite(lo) else math.nan
+    return {
+        "amplitude": spec.amplitude, "arm": arm, "sweep": SWEEP_OF_ARM[arm],
+        "loss_kind": loss["kind"], "f_loss": f, "f_fold": loss["f_fold"],
+        "f_stable": loss["f_stable"], "f_unstable": loss["f_unstable"],
+        "sweep_last_on": on, "sweep_first_off": off, "distance": dist,
+        "agrees": bool(math.isfinite(dist) and dist == 0.0),
+        "jump_from": jump["f_before"], "jump_to": jump["f_after"], "jump_rms": jump["jump"],
+        "jump_share": jump["share"], "N": spec.N, "M": bb.problem.M,
+    }  # fmt: skip
+
+
+def run_amplitude(beam: Beam, spec: NonlinearSpec, effects: Effects | None = None, log=None):
+    """Both arms and both sweeps of one amplitude: (rows of branches and sweeps, fold rows)."""
+    effects = effects if effects is not None else Effects()
+    rows, folds, arms = [], [], {}
+    for arm in ARMS:
+        cpu = time.process_time()
+        arms[arm] = bb = branch_arm(beam, spec, arm, effects)
+        rows += arm_rows(bb, arm, spec.amplitude)
+        if log is not None:
+            log.info("a = %g, arm %s: %d points, M = %d, %s (CPU %.1f s)", spec.amplitude, arm,
+                     len(bb.branch.points), bb.problem.M, bb.branch.message,
+                     time.process_time() - cpu)  # fmt: skip
+    sweeps = {}
+    for sweep in SWEEPS:
+        cpu = time.process_time()
+        sweeps[sweep] = follow_sweep(beam, spec, sweep, effects)
+        rows += sweeps[sweep]
+        if log is not None:
+            log.info("a = %g, sweep %s: %d points (CPU %.1f s)", spec.amplitude, sweep,
+                     len(sweeps[sweep]), time.process_time() - cpu)  # fmt: skip
+    hyst = hysteresis(sweeps["up"], sweeps["down"])
+    for arm, bb in arms.items():
+        row = fold_row(bb, arm, sweeps[SWEEP_OF_ARM[arm]], spec)
+        row["hysteresis_from"] = min(hyst) if hyst else math.nan
+        row["hysteresis_to"] = max(hyst) if hyst else math.nan
+        folds.append(row)
+    return rows, folds

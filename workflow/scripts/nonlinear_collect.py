@@ -1,0 +1,25 @@
+"""Every amplitude's branch and sweeps in one table and figure, and the folds table."""
+
+# ruff: noqa: F821
+# (`snakemake` is injected by Snakemake)
+import pandas as pd
+
+from rotbeam.report.io import write_csv, write_table
+from rotbeam.report.joblog import job_log
+from rotbeam.report.nonlinear_figures import branches_figure
+
+with job_log(snakemake.log[0], snakemake.input, snakemake.output, snakemake.rule) as log:
+    rows = pd.concat([pd.read_csv(f) for f in snakemake.input.rows], ignore_index=True)
+    folds = pd.concat([pd.read_csv(f) for f in snakemake.input.folds], ignore_index=True)
+    write_csv(rows, snakemake.output.csv)
+    title = (
+        f"Where each arm of the branch of periodic orbits first loses stability (loss_kind at "
+        f"f_loss [Hz]; f_fold the arm's first fold) against the largest jump of the time-stepped "
+        f"sweep in the same direction (jump_from -> jump_to [Hz]); distance [Hz] outside that "
+        f"interval, agrees when <= one sweep step; hysteresis_from..to: where the up and down "
+        f"sweeps differ by > 10 % of the largest RMS. Omega_0 = {snakemake.params.omega0:g} rad/s."
+    )
+    log.info("%s", folds.to_string())
+    write_table(folds, snakemake.output.folds_csv, snakemake.output.folds_md, title)
+    out = snakemake.output
+    branches_figure(rows, folds, snakemake.params.omega0, out.pdf, out.png)
