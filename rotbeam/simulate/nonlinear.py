@@ -53,6 +53,9 @@ class NonlinearSpec:
     rtol: float = 1e-5  #: time stepper of the sweeps
     ss_tol: float = 1e-3  #: steady-state tolerance of the sweeps
     max_periods: int = 400  #: per sweep point
+    #: [Hz] each sweep only within this distance of its arm's first loss of stability (started on
+    #: the arm's orbit there); None: over all of f_lo .. f_hi, the first point from collocation
+    sweep_window: float | None = None
 
     def frequencies(self, direction: float) -> np.ndarray:
         """The sweep's drive frequencies, in the order it visits them."""
@@ -72,15 +75,27 @@ def _stop_after_unstable(beyond: int):
 
 
 def branch_arm(beam: Beam, spec: NonlinearSpec, arm: str, effects: Effects) -> BeamBranch:
-    """One arm of the branch (`ARMS`), stopped `spec.beyond` points past its first instability."""
-    return beam_branch(beam, spec.omega0, spec.amplitude, (spec.f_lo, spec.f_hi), effects,
-                       N=spec.N, tail_tol=spec.tail_tol, ds=spec.ds, ds_max=spec.ds_max,
-                       max_points=spec.max_points, direction=ARMS[arm],
-                       stop=_stop_after_unstable(spec.beyond))  # fmt: skip
+    """One arm of the branch (`ARMS`), stopped `spec.beyond` points past its first instability.
+    Where collocation finds no orbit at the arm's end of the range, the start moves inwards by
+    sweep steps (up to 5)."""
+    lo, hi = spec.f_lo, spec.f_hi
+    for k in range(6):
+        shift = k * spec.sweep_step
+        f_range = (lo + shift, hi) if ARMS[arm] > 0 else (lo, hi - shift)
+        try:
+            return beam_branch(beam, spec.omega0, spec.amplitude, f_range, effects, N=spec.N,
+                               tail_tol=spec.tail_tol, ds=spec.ds, ds_max=spec.ds_max,
+                               max_points=spec.max_points, direction=ARMS[arm],
+                               stop=_stop_after_unstable(spec.beyond))  # fmt: skip
+        except RuntimeError:
+            if k == 5:
+                raise
+    raise AssertionError("unreachable")
 
 
 def first_instability(bb: BeamBranch) -> dict:
-    """Where the arm first loses stability: the kind (fold | period doubling | torus), its f_d
+    """Where the arm first loses stability: the kind (fold | period doubling | torus, or
+    branch point: a real multiplier through +1 where f_d does not turn), its f_d
     (the bifurcation's estimate at that step, else the mean of the two points), the first fold
     on the arm, and the points' f_d on either side."""
     pts = bb.branch.points
@@ -92,8 +107,11 @@ def first_instability(bb: BeamBranch) -> dict:
         return out
     at = [b for b in bb.branch.bifurcations if b.index == i]
     kinds = [b.kind for b in at]
-    kind = next((k for k in ("fold", "period doubling", "torus") if k in kinds), "none")
+    kind = next((k for k in ("fold", "period doubling", "torus") if k in kinds), "")
     f = next((b.p for b in at if b.kind == kind), 0.5 * (pts[i - 1].p + pts[i].p))
+    if not kind:  # no turn in f_d nor a change of counts: what the leading multiplier does
+        kind = pts[i].floquet.crossing()
+        kind = "branch point" if kind == "fold" else kind  # mu through +1 without a fold
     out.update(kind=kind, f_loss=f, f_stable=pts[i - 1].p, f_unstable=pts[i].p)
     return out
 
@@ -116,18 +134,46 @@ def sweep_numerics(spec: NonlinearSpec) -> Numerics:
                     max_tau=1e9, max_seconds=1e9, start="periodic")  # fmt: skip
 
 
-def follow_sweep(beam: Beam, spec: NonlinearSpec, sweep: str, effects: Effects) -> list[dict]:
-    """Time stepping along `spec.frequencies`: the first point from its collocated orbit, every
-    next one from the state the previous one ended in.  One row per point (RMS and max of
-    y_m / L over the last period, status, periods, |mu|max of the orbit reached, CPU s)."""
+def _window(spec: NonlinearSpec, sweep: str, bb: BeamBranch | None) -> tuple[np.ndarray, object]:
+    """The sweep's frequencies and the collocation guess of its first point: all of them and
+    None, or (with `spec.sweep_window` and the arm) those within the window of the arm's first
+    loss of stability, and the arm's stable orbit nearest the first of them."""
+    f = spec.frequencies(SWEEPS[sweep])
+    if spec.sweep_window is None or bb is None:
+        return f, None
+    f_loss = first_instability(bb)["f_loss"]
+    if not math.isfinite(f_loss):
+        return f, None
+    f = f[np.abs(f - f_loss) <= spec.sweep_window + 1e-9]
+    pts = bb.branch.points
+    stable = [pt for pt in pts[: next((k for k, p in enumerate(pts) if not p.stable), len(pts))]]
+    if not stable or f.size == 0:
+        return f, None
+    near = min(stable, key=lambda pt: abs(pt.p - f[0]))
+    return f, near.x.reshape(bb.problem.M, bb.problem.N - 1)
+
+
+def follow_sweep(
+    beam: Beam,
+    spec: NonlinearSpec,
+    sweep: str,
+    effects: Effects,
+    log=None,
+    arm: BeamBranch | None = None,
+) -> list[dict]:
+    """Time stepping along the sweep's frequencies (`_window`): the first point from its
+    collocated orbit (seeded by the arm's orbit if given), every next one from the state the
+    previous one ended in.  One row per point (RMS and max of y_m / L over the last period,
+    status, periods, |mu|max of the orbit reached, CPU s)."""
     num = sweep_numerics(spec)
     rows, state = [], None
-    for f in spec.frequencies(SWEEPS[sweep]):
+    freqs, guess = _window(spec, sweep, arm)
+    for f in freqs:
         cpu = time.process_time()
         dl = Dimensionless.from_physical(
             beam, Drive(omega0=spec.omega0, f_d=float(f), amplitude=spec.amplitude), effects
         )
-        ss = steady_state(dl, num, state0=state)
+        ss = steady_state(dl, num, state0=state, guess=guess if state is None else None)
         state = ss.state if ss.state is not None else state
         rows.append(
             {"amplitude": spec.amplitude, "kind": "sweep", "arm": sweep, "N": spec.N,
@@ -138,6 +184,10 @@ def follow_sweep(beam: Beam, spec: NonlinearSpec, sweep: str, effects: Effects) 
              "stable": bool(ss.floquet.stable) if ss.floquet is not None else False,
              "seconds": time.process_time() - cpu}
         )  # fmt: skip
+        if log is not None:
+            log.info("  %s f_d = %.4g Hz: RMS %.4g, status %d after %d periods (CPU %.1f s)",
+                     sweep, f, rows[-1]["rms_ym"], ss.status, ss.periods,
+                     rows[-1]["seconds"])  # fmt: skip
     return rows
 
 
@@ -228,7 +278,8 @@ def run_amplitude(beam: Beam, spec: NonlinearSpec, effects: Effects | None = Non
     sweeps = {}
     for sweep in SWEEPS:
         cpu = time.process_time()
-        sweeps[sweep] = follow_sweep(beam, spec, sweep, effects)
+        arm = next(arms[a] for a, s in SWEEP_OF_ARM.items() if s == sweep)
+        sweeps[sweep] = follow_sweep(beam, spec, sweep, effects, log, arm)
         rows += sweeps[sweep]
         if log is not None:
             log.info("a = %g, sweep %s: %d points (CPU %.1f s)", spec.amplitude, sweep,
