@@ -1,0 +1,124 @@
+"""The large-drive resonance (rotbeam.simulate.nonlinear, workflow target `nonlinear`): where the
+branch of periodic orbits loses stability against what time stepping does, which goes through
+neither the continuation nor the Floquet multipliers."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from rotbeam.model.criterion import rms
+from rotbeam.model.params import Beam, Dimensionless, Drive, Effects
+from rotbeam.simulate.nonlinear import (
+    NonlinearSpec,
+    branch_arm,
+    fold_row,
+    follow_sweep,
+    hysteresis,
+    largest_jump,
+)
+from rotbeam.solve.steady import steady_state
+
+# a = 3 rad/s at Omega_0 = 5 rad/s on a coarse grid: the arm from below loses stability at a
+# fold near 6.9 Hz (docs/stability.md); the sweep runs across it in 0.05 Hz steps
+SPEC = NonlinearSpec(omega0=5.0, amplitude=3.0, f_lo=6.75, f_hi=6.9, N=6, beyond=4,
+                     max_points=80, sweep_step=0.05, rtol=1e-4, ss_tol=1e-2,
+                     max_periods=200)  # fmt: skip
+
+
+def _rows(f, y):
+    return [{"f_d": a, "rms_ym": b} for a, b in zip(f, y, strict=True)]
+
+
+def test_largest_jump_and_hysteresis_on_made_up_sweeps():
+    up = _rows([1.0, 1.1, 1.2, 1.3], [0.1, 0.2, 0.05, 0.04])
+    down = _rows([1.3, 1.2, 1.1, 1.0], [0.04, 0.05, 0.06, 0.1])
+    j = largest_jump(up)
+    assert (j["f_before"], j["f_after"]) == (1.1, 1.2) and j["jump"] == pytest.approx(-0.15)
+    assert j["share"] == pytest.approx(0.15 / 0.16)
+    assert hysteresis(up, down) == [1.1]  # 0.2 against 0.06, > 10 % of 0.2
+    assert hysteresis(up, up) == []
+
+
+@pytest.fixture(scope="module")
+def arm():
+    return branch_arm(Beam(), SPEC, "from_below", Effects())
+
+
+@pytest.mark.slow  # 99 s measured (the points past the fold cost 20-60 s each)
+def test_the_up_sweep_leaves_the_arm_at_its_fold(arm):
+    """The arm from below (continuation, multipliers) first loses stability at a fold; the
+    up-sweep by time stepping, each point started from the previous one's final state, stays on
+    the arm's stable orbits (RMS within 2 %) up to the fold and is off it at the next step, on a
+    steady orbit that swings further (max |Theta| above every orbit of the arm)."""
+    rows = follow_sweep(Beam(), SPEC, "up", Effects())
+    row = fold_row(arm, "from_below", rows, SPEC)
+    assert row["loss_kind"] == "fold" and row["agrees"], row
+    off = next(r for r in rows if r["f_d"] == row["sweep_first_off"])
+    theta_arm = max(np.max(np.abs(pt.x)) for pt in arm.branch.points)
+    assert off["status"] == 0 and off["max_theta"] > theta_arm, (off, theta_arm)
+
+
+@pytest.mark.slow
+def test_a_point_past_the_fold_is_left_by_time_stepping(arm):
+    """The branch point three after the first unstable one (the middle branch, a real
+    multiplier > 1), time-stepped from its own start pushed by 1e-3 of its size, ends on a
+    stable orbit: the arm's stable orbit below the fold at the same f_d (its RMS five times
+    closer to that one's than to the start's; they differ by ~0.3 %); a stable point of the same
+    arm, pushed alike, ends at its own RMS (1e-3; its start state is 1.7e-3 off the time-stepped
+    orbit's at N = 6, the collocation's own error).
+    ss_tol 1e-5: a looser criterion calls the slow departure steady."""
+    from rotbeam.solve.numerics import Numerics
+
+    pr = arm.problem
+    pts = arm.branch.points
+    i = next(k for k, pt in enumerate(pts) if not pt.stable)
+    num = Numerics(N=SPEC.N, rtol=1e-6, ss_tol=1e-5, max_periods=300, max_tau=1e9,
+                   max_seconds=1e9)  # fmt: skip
+    for pt, stays in ((pts[i - 2], True), (pts[i + 3], False)):
+        mu = pt.floquet.multipliers[0]
+        assert stays or (abs(mu.imag) < 1e-9 and mu.real > 1.0)
+        X = pt.x.reshape(pr.M, pr.N - 1)
+        z0 = np.concatenate([X[0], (pr.collocation(pt.p).D @ X)[0]])
+        dl = Dimensionless.from_physical(
+            Beam(), Drive(omega0=SPEC.omega0, f_d=pt.p, amplitude=SPEC.amplitude), Effects()
+        )
+        ss = steady_state(dl, num, state0=z0 * (1.0 + 1e-3))
+        assert ss.status == 0 and ss.floquet is not None and ss.floquet.stable, ss.message
+        if stays:
+            own = rms(pr.midspan(pt.x, pt.p))
+            assert abs(rms(ss.y_m) / own - 1.0) < 1e-3, (pt.p, rms(ss.y_m), own)
+            continue
+        # the stable orbit of the arm below its fold at the same f_d, against the start's
+        below = [q for q in pts[:i] if q.stable]
+        f = np.array([q.p for q in below])
+        y = np.array([rms(pr.midspan(q.x, q.p)) for q in below])
+        stable_rms = float(np.interp(pt.p, f, y))
+        reached, start = rms(ss.y_m), rms(pr.midspan(pt.x, pt.p))
+        assert abs(reached - stable_rms) * 5 < abs(reached - start), (reached, stable_rms, start)
+
+
+@pytest.mark.slow
+def test_nonlinear_target_on_the_quick_config(workflow_copy):
+    """`snakemake nonlinear` with config/quick.yaml (one amplitude, N = 6): every output, the
+    folds table's row of the arm from below agreeing with its sweep, and nothing of `all` run."""
+    import json
+
+    import pandas as pd
+    from conftest import QUICK, job_counts, snakemake
+
+    p = snakemake(workflow_copy, "--cores", "1", "nonlinear", *QUICK)
+    assert p.returncode == 0, p.stderr[-3000:]
+    out = workflow_copy / "results" / "nonlinear"
+    for name in ("branches.csv", "branches.pdf", "branches.png", "folds.csv", "folds.md",
+                 "response.json", "response.csv", "response.png"):  # fmt: skip
+        assert (out / name).stat().st_size > 0, name
+    assert set(job_counts(p.stdout)) == {"nonlinear", "nonlinear_amplitude", "nonlinear_collect",
+                                         "nonlinear_response"}  # fmt: skip
+    folds = pd.read_csv(out / "folds.csv")
+    below = folds[folds["arm"] == "from_below"].iloc[0]
+    assert below["loss_kind"] == "fold" and bool(below["agrees"])
+    rows = pd.read_csv(out / "branches.csv")
+    assert set(rows["kind"]) == {"branch", "sweep"} and set(rows["arm"]) >= {"from_below", "up"}
+    resp = json.loads((out / "response.json").read_text())
+    assert resp["response"] in ("periodic", "subharmonic", "quasiperiodic", "chaotic")
