@@ -24,6 +24,8 @@ from .config.parameters import check_value, help_text, param
 from .model.params import BETA1, C_MAX_LIMIT, Beam
 
 EXIT_USAGE = 2
+#: grid of the classification run without a stable periodic state (`rotbeam simulate`)
+RESPONSE_N = 6
 
 
 class _Parser(argparse.ArgumentParser):
@@ -71,9 +73,13 @@ def build_parser() -> argparse.ArgumentParser:
     s.add_argument("--plot", help="draw y_m, dynamic against quasi-static, with the verdict and "
                    "the cost, to this .png, .pdf or .svg file (without a stable periodic state: "
                    "the Poincare section and the spectrum)")  # fmt: skip
-    s.add_argument("--response-periods", type=_int, default=100,
+    s.add_argument("--response-periods", type=_int, default=40,
                    help="without a stable periodic state: periods of transient, then as many "
-                   "classified (Poincare section, Lyapunov exponent); default 100")  # fmt: skip
+                   "classified (Poincare section, Lyapunov exponent); default 40")  # fmt: skip
+    s.add_argument("--response-N", type=_int, default=RESPONSE_N,
+                   help="grid intervals of that classification run, in [4, 80] (default "
+                   f"{RESPONSE_N}: at large drive the top bending modes ring and set the step; "
+                   "a period costs ~9 s at N = 6)")  # fmt: skip
 
     c = sub.add_parser("critical", help="f_d*: the drive frequency where Delta RMS reaches the "
                        "threshold at one speed (root finding on the full model)")  # fmt: skip
@@ -255,6 +261,8 @@ def cmd_simulate(args: argparse.Namespace) -> int:
         raise RotbeamInputError(
             f"argument --response-periods: must be >= 1, got {args.response_periods}"
         )
+    if not 4 <= args.response_N <= 80:
+        raise RotbeamInputError(f"argument --response-N: must be in [4, 80], got {args.response_N}")
 
     def progress(k: int, bound: float) -> None:
         print(f"\rperiod {k}: transient bound {bound:.2e}", end="", file=sys.stderr, flush=True)
@@ -304,7 +312,7 @@ def _response(res, args: argparse.Namespace) -> dict[str, Any]:
         return {"response": "periodic", "lyapunov_max": lyap}
     from .simulate.response import response_of
 
-    r = response_of(res.scene, args.response_periods, args.response_periods)
+    r = response_of(res.scene, args.response_periods, args.response_periods, N=args.response_N)
     return r.as_dict() | {"_response": r}
 
 

@@ -69,6 +69,7 @@ CLI_CASES = {
     ),
     "amplitude negative": (SIM + ["--amplitude", "-1"], ["--amplitude", "-1.0", ">= 0"]),
     "R negative": (SIM + ["--R", "-1"], ["--R", "beam.R", "-1.0", "> 0"]),
+    "response grid too coarse": (SIM + ["--response-N", "3"], ["--response-N", "3", "[4, 80]"]),
     "N negative": (SIM[:5] + ["--N", "-5"], ["--N", "numerics.N", "-5", "[3, 2000]"]),
     "modes hub-ratio negative": (
         ["modes", "--dimensionless", "--hub-ratio", "-1"], ["--hub-ratio", "-1.0", ">= 0"]

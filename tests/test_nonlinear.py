@@ -14,7 +14,7 @@ from scipy.integrate import solve_ivp
 
 from rotbeam.simulate.response import classify, section_distances
 from rotbeam.solve.continuation import FirstOrderProblem, continue_branch
-from rotbeam.solve.lyapunov import largest_lyapunov
+from rotbeam.solve.lyapunov import largest_lyapunov, late_rate
 
 SIGMA, RHO, BETA = 10.0, 28.0, 8.0 / 3.0
 
@@ -36,6 +36,37 @@ def test_lorenz_largest_lyapunov_exponent():
                            atol=1e-11)  # fmt: skip
     assert abs(res.exponent - 0.9056) < 0.03
     assert res.spread < 0.05
+
+
+def test_late_rate_discards_the_first_half():
+    """Growth +2 a unit interval for six intervals (a transient), then -0.5 for six: the late
+    rate is -0.5 with no spread, where the running mean is still +0.75; with the fourth
+    quarter at -1.0 the spread is the quarters' difference."""
+    logs = np.array([2.0] * 6 + [-0.5] * 6)
+    assert late_rate(logs, 1.0) == (-0.5, 0.0)
+    assert late_rate(logs, 0.5) == (-1.0, 0.0)  # per unit time
+    assert np.mean(logs) == 0.75
+    rate, spread = late_rate(np.array([2.0] * 6 + [-0.5] * 3 + [-1.0] * 3), 1.0)
+    assert rate == pytest.approx(-0.75) and spread == pytest.approx(0.5)
+    assert math.isnan(late_rate(np.ones(3), 1.0)[0])
+
+
+def test_damped_oscillator_exponent_is_minus_zeta():
+    """x'' + 2 zeta x' + x = cos t: every tangent vector decays like exp(-zeta t), and over the
+    damped period 2 pi / sqrt(1 - zeta^2) it comes back to its direction, so the late rate and
+    Benettin's mean are -zeta (closed form) to the stepper's accuracy."""
+    zeta = 0.05
+    Pd = 2.0 * math.pi / math.sqrt(1.0 - zeta**2)
+
+    def f(t, z):
+        return np.array([z[1], -2.0 * zeta * z[1] - z[0] + math.cos(t)])
+
+    def jac(t, z):
+        return np.array([[0.0, 1.0], [-1.0, -2.0 * zeta]])
+
+    ly = largest_lyapunov(f, jac, np.zeros(2), Pd, 8, method="DOP853", rtol=1e-11, atol=1e-13)
+    assert ly.late == pytest.approx(-zeta, abs=1e-7) and ly.late_spread < 1e-7
+    assert ly.exponent == pytest.approx(-zeta, abs=1e-7)
 
 
 D, W = 0.3, 1.2

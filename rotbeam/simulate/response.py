@@ -3,8 +3,10 @@ time-stepped response.
 
 After `transient_periods` drive periods from the quasi-static start, `section_periods` more are
 integrated with one tangent vector (`rotbeam.solve.lyapunov`): the states at tau = k P are the
-stroboscopic Poincare section, the tangent gives the largest Lyapunov exponent, and 16 samples a
-period of y_m give the spectrum.  With size the largest |z| on the section and d(q) the largest
+stroboscopic Poincare section, the tangent gives the largest Lyapunov exponent (its growth rate
+over the second half of the section, so that a chaotic transient in the first half does not
+count: `LyapunovResult.late`), and 16 samples a period of y_m give the spectrum.  With size
+the largest |z| on the section and d(q) the largest
 |z_{j+q} - z_j| / size over the last half of the section (q = 1 .. MAX_SUBHARMONIC):
 
 * ``periodic`` (period P) when d(1) <= tol, ``subharmonic`` (period q P) when the smallest q
@@ -22,6 +24,7 @@ from __future__ import annotations
 
 import math
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -33,6 +36,11 @@ from ..solve.steady import first_order_rhs, initial_state
 from .scene import Scene
 
 RESPONSES = ("periodic", "subharmonic", "quasiperiodic", "chaotic")
+#: stepper tolerance of the classification run.  At a = 3 rad/s, 7 Hz (N = 6, chaotic) the
+#: tangent's growth over two periods is the same to 4e-6 (relative) at rtol 1e-5 and 1e-7, for
+#: a third of the steps; the lightly damped top bending modes, rung by the large motion, set the
+#: step (docs/stability.md "The response at a = 3 rad/s, 7 Hz")
+RTOL = 1e-5
 MAX_SUBHARMONIC = 8
 CHAOS_MIN = 0.01  #: lambda P above which a clearly positive exponent counts as chaos
 SAMPLES = 16  #: samples per period for the spectrum
@@ -42,8 +50,8 @@ SAMPLES = 16  #: samples per period for the spectrum
 class ResponseResult:
     response: str  #: one of RESPONSES
     period_multiple: int  #: q for periodic (1) and subharmonic; 0 otherwise
-    lyapunov_max: float  #: largest Lyapunov exponent [1/s]
-    lyapunov_spread: float  #: its spread over the last half of the run [1/s]
+    lyapunov_max: float  #: largest Lyapunov exponent over the section's second half [1/s]
+    lyapunov_spread: float  #: its third quarter's rate minus its fourth's (absolute) [1/s]
     section: np.ndarray  #: (K, 2) y_m / L and its rate [1/s] at t = k / f_d
     spectrum_hz: np.ndarray
     spectrum: np.ndarray  #: |FFT| of y_m (Hann window)
@@ -92,6 +100,24 @@ def section_distances(section: np.ndarray, max_q: int = MAX_SUBHARMONIC) -> list
     return out
 
 
+def _transient(rhs, jac, z, P, periods, rtol, atol, deadline, progress, total):
+    """Step `periods` periods from z, one solve a period so that the time budget (`deadline`,
+    time.perf_counter) and `progress` are seen between periods: (final state, periods done,
+    why it stopped early or '')."""
+    done = 0
+    for k in range(periods):
+        sol = solve_ivp(rhs, (k * P, (k + 1) * P), z, method="Radau", rtol=rtol, atol=atol,
+                        jac=jac)  # fmt: skip
+        if sol.status < 0 or not np.all(np.isfinite(sol.y[:, -1])):
+            return z, done, f"transient failed in period {k + 1}: {sol.message}"
+        z, done = sol.y[:, -1], k + 1
+        if progress is not None:
+            progress(done, total)
+        if time.perf_counter() > deadline:
+            return z, done, f"transient cut from {periods} periods by the time budget"
+    return z, done, ""
+
+
 def _midspan_rate(model: DiscreteElastica, theta: np.ndarray, theta_t: np.ndarray) -> np.ndarray:
     """dy_m/dtau from Theta, Theta_t (n, K), as `Grid.midspan` interpolates y."""
     g = model.grid
@@ -119,13 +145,17 @@ def response_of(
     section_periods: int = 100,
     N: int | None = None,
     max_seconds: float = 1800.0,
-    rtol: float = 1e-7,
+    rtol: float = RTOL,
     tol: float = 1e-3,
     start: str = "quasistatic",
+    progress: Callable[[int, int], None] | None = None,
 ) -> ResponseResult:
     """Time-step the scene past its transient and classify what it settles into.
 
     `start`: "quasistatic" (default) or "rest" (or "linear"), the state at t = 0.
+    `progress(done, total)` is called after every period.  `max_seconds` bounds the run: the
+    transient gets its share (transient / all periods) of it, the section the rest; the message
+    says where the budget cut a phase short.
     """
     if start not in ("quasistatic", "rest", "linear"):
         raise ValueError(f"start must be quasistatic, rest or linear, got {start!r}")
@@ -146,32 +176,43 @@ def response_of(
     atol = np.concatenate(
         [np.full(n, 1e-3 * rtol * scale), np.full(n, 1e-3 * rtol * scale * dl.omega)]
     )
-    sol = solve_ivp(
-        rhs, (0.0, transient_periods * P), z, method="Radau", rtol=rtol, atol=atol, jac=jac
-    )
-    z = sol.y[:, -1]
-    ly = largest_lyapunov(rhs, jac, z, P, section_periods, t0=transient_periods * P, rtol=rtol,
-                          atol=atol, samples_per_interval=SAMPLES, deadline=deadline)  # fmt: skip
+    total = transient_periods + section_periods
+    share = t0 + max_seconds * transient_periods / total
+    z, done, note = _transient(rhs, jac, z, P, transient_periods, rtol, atol, share, progress,
+                               total)  # fmt: skip
+
+    def per_interval(k: int) -> None:
+        if progress is not None:
+            progress(done + k, total)
+
+    ly = largest_lyapunov(rhs, jac, z, P, section_periods, t0=done * P, rtol=rtol, atol=atol,
+                          samples_per_interval=SAMPLES, deadline=deadline,
+                          progress=per_interval)  # fmt: skip
     sec = ly.section
     dist = section_distances(sec)
-    response, q = classify(dist, ly.exponent * P, ly.spread * P, tol)
+    # the second half of the section only: a chaotic transient the run began in stays in the
+    # running mean (rotbeam.solve.lyapunov); Benettin's full-run mean is kept as `running`
+    lam, spread = (ly.late, ly.late_spread) if math.isfinite(ly.late) else (ly.exponent, ly.spread)
+    response, q = classify(dist, lam * P, spread * P, tol)
     theta_s = sec[:, :n].T
     y_sec = np.atleast_1d(model.grid.midspan(theta_s))
     yt_sec = _midspan_rate(model, theta_s, sec[:, n:].T) / T
     theta_all = np.concatenate(ly.samples, axis=1) if ly.samples else theta_s
     y_all = np.atleast_1d(model.grid.midspan(theta_all[:n]))
     f, amp, peaks = _spectrum(y_all, P * T / SAMPLES)
-    periods = transient_periods + ly.intervals
+    periods = done + ly.intervals
     msg = (f"{response}{f' (period {q} P)' if q > 1 else ''}: {periods} periods at N={N} "
-           f"({transient_periods} transient, from {start}), largest Lyapunov exponent "
-           f"{ly.exponent / T:.3g} +- {ly.spread / T:.2g} 1/s, section distance d(1)={dist[0]:.2g}"
+           f"({done} transient, from {start}, rtol {rtol:g}), largest Lyapunov exponent "
+           f"{lam / T:.3g} +- {spread / T:.2g} 1/s (last half; whole run {ly.exponent / T:.3g}), "
+           f"section distance d(1)={dist[0]:.2g}"
+           + (f"; {note}" if note else "")
            + (f"; {ly.message}" if "stopped" in ly.message or "failed" in ly.message
               else ""))  # fmt: skip
     return ResponseResult(
         response=response,
         period_multiple=q,
-        lyapunov_max=ly.exponent / T,
-        lyapunov_spread=ly.spread / T,
+        lyapunov_max=lam / T,
+        lyapunov_spread=spread / T,
         section=np.column_stack([y_sec, yt_sec]),
         spectrum_hz=f,
         spectrum=amp,

@@ -14,10 +14,12 @@ with job_log(snakemake.log[0], snakemake.input, snakemake.output, snakemake.rule
     write_csv(rows, snakemake.output.csv)
     title = (
         f"Where each arm of the branch of periodic orbits first loses stability (loss_kind at "
-        f"f_loss [Hz]; f_fold the arm's first fold) against the largest jump of the time-stepped "
-        f"sweep in the same direction (jump_from -> jump_to [Hz]); distance [Hz] outside that "
-        f"interval, agrees when <= one sweep step; hysteresis_from..to: where the up and down "
-        f"sweeps differ by > 10 % of the largest RMS. Omega_0 = {snakemake.params.omega0:g} rad/s."
+        f"f_loss [Hz]; f_fold the arm's first fold) against where the time-stepped sweep in the "
+        f"same direction leaves the arm's stable orbits (sweep_last_on, sweep_first_off [Hz]: RMS "
+        f"within 2 % of the arm's, and the next point); agrees when f_loss lies between them "
+        f"(distance [Hz] outside); jump_from -> jump_to: the sweep's largest RMS change; "
+        f"hysteresis_from..to: where the up and down sweeps differ by > 10 % of the largest RMS. "
+        f"Omega_0 = {snakemake.params.omega0:g} rad/s."
     )
     log.info("%s", folds.to_string())
     write_table(folds, snakemake.output.folds_csv, snakemake.output.folds_md, title)

@@ -18,8 +18,14 @@ with job_log(snakemake.log[0], snakemake.input, snakemake.output, snakemake.rule
     r = p.response
     drive = Drive(omega0=p.omega0, f_d=r["f_d"], amplitude=r["amplitude"])
     scene = Scene(beam=Beam(**p.beam), drive=drive, numerics=Numerics(N=r["N"]))
+
+    def progress(done: int, total: int) -> None:
+        if done % 10 == 0 or done == total:
+            log.info("%d of %d periods", done, total)
+
     res = response_of(scene, r["transient_periods"], r["section_periods"], N=r["N"],
-                      start=r["start"], max_seconds=r["max_seconds"])  # fmt: skip
+                      start=r["start"], max_seconds=r["max_seconds"], rtol=r["rtol"],
+                      progress=progress)  # fmt: skip
     log.info("%s", res.message)
     out = {**res.as_dict(), "omega0": p.omega0, "amplitude": r["amplitude"], "f_d": r["f_d"],
            "start": res.start, "lyapunov_spread": res.lyapunov_spread,
@@ -27,7 +33,7 @@ with job_log(snakemake.log[0], snakemake.input, snakemake.output, snakemake.rule
     write_json(out, snakemake.output.json)
     write_csv(
         pd.DataFrame({"y_m": res.section[:, 0], "y_m_rate": res.section[:, 1]}),
-        snakemake.output.section,
+        snakemake.output.csv,
     )
     title = (f"a = {r['amplitude']:g} rad/s, f_d = {r['f_d']:g} Hz from {res.start}: "
              f"{res.response}, lambda_max = {res.lyapunov_max:.3g} +- "
