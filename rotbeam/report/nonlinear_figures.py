@@ -1,5 +1,5 @@
 """The nonlinear resonance: branches of periodic orbits (stable solid, unstable dashed, folds and
-period doublings marked) beside the sweeps that follow the beam, one panel per amplitude; and
+period doublings marked) beside the sweeps that follow the beam, one column per amplitude; and
 the response at one scene from rest (section and the Lyapunov exponent's convergence)."""
 
 from __future__ import annotations
@@ -46,7 +46,12 @@ def _panel(ax, rows: pd.DataFrame, folds: pd.DataFrame, a: float) -> None:
             ax.plot(f, y, m, mfc="none", mec=c, ms=6)
     for name, m, color in (("up", "^", QS), ("down", "v", GREY)):
         sw = rows[(rows["kind"] == "sweep") & (rows["arm"] == name)]
-        ax.plot(sw["f_d"], sw["rms_ym"], m, color=color, ms=4, ls="none", label=f"sweep {name}")
+        steady = sw["status"].to_numpy() == 0
+        ax.plot(sw["f_d"][steady], sw["rms_ym"][steady], m, color=color, ms=4, ls="none")
+        # not steady within the budget, or settled on an unstable orbit: hollow, RMS of the last
+        # period only
+        ax.plot(sw["f_d"][~steady], sw["rms_ym"][~steady], m, mfc="none", mec="r", ms=5,
+                ls="none")  # fmt: skip
     for _, fr in folds[folds["amplitude"] == a].iterrows():
         if math.isfinite(fr["f_loss"]):
             ax.axvline(fr["f_loss"], color=GREY, ls=":", lw=0.8)
@@ -55,16 +60,33 @@ def _panel(ax, rows: pd.DataFrame, folds: pd.DataFrame, a: float) -> None:
     ax.set_ylabel("RMS $y_m / L$")
 
 
+def _zoom(ax, rows: pd.DataFrame, folds: pd.DataFrame, a: float, margin: float = 0.12) -> None:
+    """Limit the panel to `margin` Hz around the amplitude's losses of stability (the y range
+    from what is drawn there)."""
+    f = folds.loc[folds["amplitude"] == a, "f_loss"].to_numpy(float)
+    f = f[np.isfinite(f)]
+    if f.size == 0:
+        return
+    lo, hi = f.min() - margin, f.max() + margin
+    y = rows.loc[rows["f_d"].between(lo, hi), "rms_ym"].to_numpy(float)
+    ax.set_xlim(lo, hi)
+    if y.size:
+        pad = 0.08 * max(np.ptp(y), 1e-3)
+        ax.set_ylim(y.min() - pad, y.max() + pad)
+    ax.set_title(f"a = {a:g} rad/s, near the losses of stability", loc="left")
+
+
 def branches_figure(rows: pd.DataFrame, folds: pd.DataFrame, omega0: float, pdf, png) -> None:
-    """One panel per amplitude: both arms of the branch and both sweeps."""
+    """One column per amplitude: both arms of the branch and both sweeps over the whole range
+    (top) and around the arms' losses of stability (bottom)."""
     amps = sorted(rows["amplitude"].unique())
-    ncols = min(2, len(amps))
-    nrows = int(np.ceil(len(amps) / ncols))
-    fig, axes = figure(nrows, ncols, width=4.6 * ncols, height=3.4 * nrows, squeeze=False)
-    for ax, a in zip(axes.ravel(), amps, strict=False):
-        _panel(ax, rows[rows["amplitude"] == a], folds, a)
-    for ax in axes.ravel()[len(amps) :]:
-        ax.set_visible(False)
+    ncols = len(amps)
+    fig, axes = figure(2, ncols, width=3.6 * ncols, height=6.6, squeeze=False)
+    for k, a in enumerate(amps):
+        sub = rows[rows["amplitude"] == a]
+        _panel(axes[0, k], sub, folds, a)
+        _panel(axes[1, k], sub, folds, a)
+        _zoom(axes[1, k], sub, folds, a)
     h = [
         axes[0, 0].plot([], [], color=DYN)[0],
         axes[0, 0].plot([], [], color=ACCENT)[0],
@@ -73,10 +95,11 @@ def branches_figure(rows: pd.DataFrame, folds: pd.DataFrame, omega0: float, pdf,
         axes[0, 0].plot([], [], "s", mfc="none", mec=MARKS["period doubling"][1])[0],
         axes[0, 0].plot([], [], "^", color=QS)[0],
         axes[0, 0].plot([], [], "v", color=GREY)[0],
+        axes[0, 0].plot([], [], "^", mfc="none", mec="r")[0],
     ]
     labels = ["branch from below (stable)", "branch from above (stable)", "unstable",
               "fold (mu through +1)", "period doubling (mu through -1)", "sweep up",
-              "sweep down"]  # fmt: skip
+              "sweep down", "sweep point not steady"]  # fmt: skip
     fig.legend(h, labels, loc="outside lower center", ncols=4)
     fig.suptitle(rf"Periodic orbits and sweeps at $\Omega_0$ = {omega0:g} rad/s")
     save(fig, Path(pdf), Path(png))
