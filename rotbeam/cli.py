@@ -312,7 +312,12 @@ def _response(res, args: argparse.Namespace) -> dict[str, Any]:
         return {"response": "periodic", "lyapunov_max": lyap}
     from .simulate.response import response_of
 
-    r = response_of(res.scene, args.response_periods, args.response_periods, N=args.response_N)
+    def progress(done: int, total: int) -> None:
+        print(f"\rresponse (N = {args.response_N}): period {done} of {total}", end="",
+              file=sys.stderr, flush=True)  # fmt: skip
+
+    r = response_of(res.scene, args.response_periods, args.response_periods, N=args.response_N,
+                    progress=progress if args.progress else None)  # fmt: skip
     return r.as_dict() | {"_response": r}
 
 

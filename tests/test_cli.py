@@ -129,3 +129,25 @@ def test_cli_critical_bad_flags_are_one_line_exit_2(flags, words):
     assert p.returncode == 2 and "Traceback" not in p.stderr
     assert len(p.stderr.strip().splitlines()) == 1
     assert all(w in p.stderr for w in words), p.stderr
+
+
+def test_simulate_without_steady_state_classifies_on_the_response_grid(tmp_path):
+    """A run from rest stopped after two periods (no steady state: exit 1) is classified on the
+    grid --response-N asks for, over the periods --response-periods asks for, with progress on
+    stderr; the class is one of the four words and the exponent is finite (the class of so
+    short a run is not the point: tests/test_nonlinear.py checks the classifier)."""
+    import math
+
+    scene = tmp_path / "s.yaml"
+    scene.write_text(
+        "drive: {omega0: 5, f_d: 2}\n"
+        "numerics: {N: 4, start: rest, max_periods: 2, extrapolate: false}\n"
+    )
+    p = run("simulate", "--scene", str(scene), "--json", "--response-N", "4",
+            "--response-periods", "2", "--progress")  # fmt: skip
+    assert p.returncode == 1, p.stderr
+    d = json.loads(p.stdout)
+    assert d["response"] in ("periodic", "subharmonic", "quasiperiodic", "chaotic")
+    assert d["response_N"] == 4 and d["response_periods"] == 4, d["response_message"]
+    assert math.isfinite(d["lyapunov_max"])
+    assert "response (N = 4): period 4 of 4" in p.stderr
