@@ -105,14 +105,27 @@ def branches_figure(rows: pd.DataFrame, folds: pd.DataFrame, omega0: float, pdf,
     save(fig, Path(pdf), Path(png))
 
 
-def response_figure(section: np.ndarray, running: np.ndarray, f_d: float, title: str, png) -> None:
-    """Stroboscopic section beside the running Lyapunov exponent (per second) against periods."""
+def response_figure(
+    section: np.ndarray,
+    running: np.ndarray,
+    f_d: float,
+    title: str,
+    png,
+    late: float | None = None,
+) -> None:
+    """Stroboscopic section beside the running Lyapunov exponent (per second) against periods,
+    with the rate over the second half (`late`, what the class rests on) where given."""
     fig, (a1, a2) = figure(1, 2, width=9.0, height=3.6)
     a1.plot(section[:, 0], section[:, 1], ".", color=DYN, ms=3)
     a1.set_xlabel("$y_m / L$ at $t = k / f_d$")
     a1.set_ylabel(r"$\dot y_m / L$ [1/s]")
     a1.set_title(f"Poincare section ({section.shape[0]} periods)", loc="left")
-    a2.plot(np.arange(1, running.size + 1), running, color=DYN)
+    a2.plot(np.arange(1, running.size + 1), running, color=DYN, label="running mean (Benettin)")
+    if late is not None and math.isfinite(late) and running.size >= 4:
+        k = running.size
+        a2.plot([k // 2 + 1, k], [late, late], color=ACCENT, ls="--",
+                label="rate over the second half")  # fmt: skip
+        a2.legend(loc="upper right")
     a2.axhline(0.0, color=GREY, lw=0.8)
     a2.set_xlabel(f"periods of the section (1 / {f_d:g} Hz)")
     a2.set_ylabel(r"running $\lambda_{max}$ [1/s]")

@@ -38,4 +38,5 @@ with job_log(snakemake.log[0], snakemake.input, snakemake.output, snakemake.rule
     title = (f"a = {r['amplitude']:g} rad/s, f_d = {r['f_d']:g} Hz from {res.start}: "
              f"{res.response}, lambda_max = {res.lyapunov_max:.3g} +- "
              f"{res.lyapunov_spread:.2g} 1/s (N = {res.N})")  # fmt: skip
-    response_figure(res.section, res.lyapunov_running, r["f_d"], title, snakemake.output.png)
+    response_figure(res.section, res.lyapunov_running, r["f_d"], title, snakemake.output.png,
+                    late=res.lyapunov_max)  # fmt: skip
