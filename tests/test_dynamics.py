@@ -125,3 +125,18 @@ def test_verification_rejects_an_inaccurate_orbit():
     err_checked = abs(rms(checked.y_m) - rms(ref.y_m)) / rms(ref.y_m)
     assert err_coarse > 5e-4  # the check had something to catch
     assert err_checked < 1e-4
+
+
+def test_no_coarse_run_when_the_fine_grid_has_no_steady_state():
+    """Richardson needs both grids' steady states: when grid N has none (here: from rest, given
+    2 periods), the N / 2 run is skipped, and the result says so instead of extrapolating."""
+    from rotbeam.simulate.scene import build_scene
+
+    num = {"N": 6, "start": "rest", "max_periods": 2, "extrapolate": True}
+    res = simulate(build_scene({"drive": {"omega0": 5.0, "f_d": 2.0}, "numerics": num}))
+    assert not res.converged
+    assert res.extrapolation == {
+        "N_coarse": 3,
+        "extrapolated": False,
+        "note": "not extrapolated: no steady state at N = 6 (N = 3 not run)",
+    }

@@ -45,6 +45,7 @@ def plot_verdict(result: SceneResult, verdict: Verdict, path: str | Path) -> Non
         loc="left",
     )
     cost = f"computed in {result.seconds:.3g} s (N = {num.N}, {num.method}"
-    cost += ", Richardson-extrapolated RMS)" if result.extrapolation else ")"
+    extrapolated = bool(result.extrapolation and result.extrapolation.get("extrapolated"))
+    cost += ", Richardson-extrapolated RMS)" if extrapolated else ")"
     ax.legend(title=cost, loc="upper center", bbox_to_anchor=(0.5, -0.2), ncol=2)
     save(fig, path)

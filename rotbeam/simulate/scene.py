@@ -142,6 +142,9 @@ def simulate(
     if not num.extrapolate:
         return fine
     Nc = num.N // 2
+    if not fine.converged:  # nothing to extrapolate: the coarse run would only cost time
+        note = f"not extrapolated: no steady state at N = {num.N} (N = {Nc} not run)"
+        return replace(fine, extrapolation={"N_coarse": Nc, "extrapolated": False, "note": note})
     coarse_guess = guess[:, 1::2] if guess is not None and num.N % 2 == 0 else None
     coarse = _simulate_grid(
         Scene(scene.beam, scene.drive, scene.effects, replace(num, N=Nc, extrapolate=False)),
