@@ -277,6 +277,9 @@ CONFIG_CASES = {
     "fig4 range reversed": (("fig4", "lo"), 1.5, ["fig4.lo = 1.5", "fig4.hi = 1.4", "lo < hi"]),
     "boundary range empty": (("boundary", "hi"), 0.1, ["boundary.hi = 0.1", "lo < hi"]),
     "fig3 range reversed": (("fig3", "f_d_max"), 0.5, ["fig3.f_d_max = 0.5", "f_d_min < f_d_max"]),
+    "nonlinear range reversed": (
+        ("nonlinear", "f_hi"), 5.0, ["nonlinear.f_lo = ", "nonlinear.f_hi = 5.0", "f_lo < f_hi"]
+    ),
     "fig7 L beyond R": (("fig7", "L"), [1e-3, 0.2], ["fig7.L[1]", "0.2", "beam.R"]),
     "N too small": (("numerics", "N"), 2, ["numerics.N", "2", "[3, 2000]"]),
     "convergence N too small": (("convergence", "N"), [5, 2], ["convergence.N[1]", "2", "[3,"]),

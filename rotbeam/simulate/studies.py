@@ -246,12 +246,6 @@ def lines_from_config(config: dict[str, Any]) -> dict[tuple[str, str], dict[str,
     a = float(config["amplitude"])
     ref = config["beam"]
     out: dict[tuple[str, str], dict[str, Any]] = {}
-    nl = config.get("nonlinear")
-    if nl is not None and not nl["f_lo"] < nl["f_hi"]:
-        raise RotbeamInputError(
-            f"nonlinear.f_lo = {nl['f_lo']!r}, nonlinear.f_hi = {nl['f_hi']!r}: the range is "
-            f"empty or reversed; must be f_lo < f_hi"
-        )
     f3 = config["fig3"]
     out[(REF, "fig3")] = {
         "beam": ref, "omega0": f3["omega0"], "amplitude": a,
@@ -284,12 +278,6 @@ def series_from_config(config: dict[str, Any]) -> dict[str, dict[str, Any]]:
     a = float(config["amplitude"])
     ref = config["beam"]
     b = Beam(**ref)
-    nl = config.get("nonlinear")
-    if nl is not None and not nl["f_lo"] < nl["f_hi"]:
-        raise RotbeamInputError(
-            f"nonlinear.f_lo = {nl['f_lo']!r}, nonlinear.f_hi = {nl['f_hi']!r}: the range is "
-            f"empty or reversed; must be f_lo < f_hi"
-        )
     f3 = config["fig3"]
     out = {
         "fig3": {"beam": ref, "omega0": f3["omega0"], "f_d": f3["series_f_d"], "amplitude": a,
