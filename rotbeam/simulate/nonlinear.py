@@ -68,7 +68,7 @@ def _stop_after_unstable(beyond: int):
     """Stop an arm `beyond` points after its first unstable point."""
 
     def stop(branch: Branch) -> bool:
-        first = next((i for i, pt in enumerate(branch.points) if not pt.stable), None)
+        first = branch.first_unstable()
         return first is not None and len(branch.points) - 1 - first >= beyond
 
     return stop
@@ -99,10 +99,10 @@ def first_instability(bb: BeamBranch) -> dict:
     (the bifurcation's estimate at that step, else the mean of the two points), the first fold
     on the arm, and the points' f_d on either side."""
     pts = bb.branch.points
-    i = next((k for k, pt in enumerate(pts) if not pt.stable), None)
-    folds = [b for b in bb.branch.bifurcations if b.kind == "fold"]
+    i = bb.branch.first_unstable()
+    folds = bb.branch.folds()
     out = {"kind": "none", "f_loss": math.nan, "f_stable": math.nan, "f_unstable": math.nan,
-           "f_fold": folds[0].p if folds else math.nan}  # fmt: skip
+           "f_fold": folds[0] if folds else math.nan}  # fmt: skip
     if i is None or i == 0:
         return out
     at = [b for b in bb.branch.bifurcations if b.index == i]
@@ -146,7 +146,8 @@ def _window(spec: NonlinearSpec, sweep: str, bb: BeamBranch | None) -> tuple[np.
         return f, None
     f = f[np.abs(f - f_loss) <= spec.sweep_window + 1e-9]
     pts = bb.branch.points
-    stable = [pt for pt in pts[: next((k for k, p in enumerate(pts) if not p.stable), len(pts))]]
+    first = bb.branch.first_unstable()
+    stable = pts[: len(pts) if first is None else first]
     if not stable or f.size == 0:
         return f, None
     near = min(stable, key=lambda pt: abs(pt.p - f[0]))
@@ -224,7 +225,8 @@ def departure(bb: BeamBranch, sweep_rows: list[dict], tol: float = 0.02) -> tupl
     point is on it when its f_d lies in the stable part's range and its RMS is within `tol`
     (relative) of the stable part's RMS interpolated there; (nan, nan) if it never leaves."""
     pts = bb.branch.points
-    i = next((k for k, pt in enumerate(pts) if not pt.stable), len(pts))
+    first = bb.branch.first_unstable()
+    i = len(pts) if first is None else first
     f = np.array([pt.p for pt in pts[:i]])
     y = np.array([rms(bb.problem.midspan(pt.x, pt.p)) for pt in pts[:i]])
     order = np.argsort(f)

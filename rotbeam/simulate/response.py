@@ -170,8 +170,8 @@ def response_of(
     def jac(t, z):
         return model.first_order_jacobian(z[:n], z[n:], dl.lam(t), dl.lam_dot(t))
 
-    z, _ = initial_state(model, dl, start)
     qs, _ = initial_state(model, dl, "quasistatic")  # the tolerances' scale, also from rest
+    z = qs if start == "quasistatic" else initial_state(model, dl, start)[0]
     scale = max(float(np.max(np.abs(qs[:n]))), 1e-6)
     atol = np.concatenate(
         [np.full(n, 1e-3 * rtol * scale), np.full(n, 1e-3 * rtol * scale * dl.omega)]

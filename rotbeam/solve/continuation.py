@@ -129,6 +129,10 @@ class Branch:
     def folds(self) -> list[float]:
         return [b.p for b in self.bifurcations if b.kind == "fold"]
 
+    def first_unstable(self) -> int | None:
+        """Index of the first point that is not stable (None: every point is)."""
+        return next((k for k, pt in enumerate(self.points) if not pt.stable), None)
+
 
 def _counts(fl: FloquetResult) -> tuple[int, int]:
     """(real multipliers below -1, complex ones outside the unit circle)."""

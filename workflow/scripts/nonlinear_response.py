@@ -28,8 +28,8 @@ with job_log(snakemake.log[0], snakemake.input, snakemake.output, snakemake.rule
                       progress=progress)  # fmt: skip
     log.info("%s", res.message)
     out = {**res.as_dict(), "omega0": p.omega0, "amplitude": r["amplitude"], "f_d": r["f_d"],
-           "start": res.start, "lyapunov_spread": res.lyapunov_spread,
-           "section_distances": res.distances, "seconds": res.seconds}  # fmt: skip
+           "start": res.start, "section_distances": res.distances,
+           "seconds": res.seconds}  # fmt: skip
     write_json(out, snakemake.output.json)
     write_csv(
         pd.DataFrame({"y_m": res.section[:, 0], "y_m_rate": res.section[:, 1]}),
