@@ -81,7 +81,8 @@ def branches_figure(rows: pd.DataFrame, folds: pd.DataFrame, omega0: float, pdf,
     (top) and around the arms' losses of stability (bottom)."""
     amps = sorted(rows["amplitude"].unique())
     ncols = len(amps)
-    fig, axes = figure(2, ncols, width=3.6 * ncols, height=6.6, squeeze=False)
+    # at least 7.2 in wide, and a two-column legend below three panels: the legend fits
+    fig, axes = figure(2, ncols, width=max(3.6 * ncols, 7.2), height=6.6, squeeze=False)
     for k, a in enumerate(amps):
         sub = rows[rows["amplitude"] == a]
         _panel(axes[0, k], sub, folds, a)
@@ -100,7 +101,7 @@ def branches_figure(rows: pd.DataFrame, folds: pd.DataFrame, omega0: float, pdf,
     labels = ["branch from below (stable)", "branch from above (stable)", "unstable",
               "fold (mu through +1)", "period doubling (mu through -1)", "sweep up",
               "sweep down", "sweep point not steady"]  # fmt: skip
-    fig.legend(h, labels, loc="outside lower center", ncols=4)
+    fig.legend(h, labels, loc="outside lower center", ncols=4 if ncols >= 3 else 2)
     fig.suptitle(rf"Periodic orbits and sweeps at $\Omega_0$ = {omega0:g} rad/s")
     save(fig, Path(pdf), Path(png))
 
