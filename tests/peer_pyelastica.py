@@ -50,11 +50,15 @@ NU = 0.5  #: Poisson ratio of rubber (G = E / 3)
 SHEAR_K = 10 * (1 + NU) / (12 + 11 * NU)  #: Timoshenko's shear coefficient of a rectangle
 
 
-def dt_max(n: int) -> float:
+def dt_max(n: int, shear_scale: float = 1.0) -> float:
     """Largest stable PositionVerlet step [s] for the Table 1 beam with n elements (measured:
     2.5e-5 s at n = 40, 1e-5 s at n = 80). Below n = 40 it stays 2.5e-5 s: the shear-rotation
-    mode, sqrt(k G A / (rho I)) = 3e4 rad/s whatever dx, blows up at 5e-5 s (n = 20)."""
-    return 2.5e-5 if n <= 40 else 1e-5 * 80.0 / n
+    mode, sqrt(k G A / (rho I)) = 3e4 rad/s whatever dx, blows up at 5e-5 s (n = 20). The axial
+    waves set it (c = sqrt(E / rho)); shear `shear_scale` times stiffer makes the shear waves the
+    faster, by sqrt(shear_scale k G / E) (1.69 at x 10), and the step shrinks by that, with a
+    20 % margin."""
+    base = 2.5e-5 if n <= 40 else 1e-5 * 80.0 / n
+    return base / max(1.0, 1.2 * math.sqrt(shear_scale * SHEAR_K / (2 * (1 + NU))))
 
 
 @dataclass(frozen=True)
@@ -120,6 +124,25 @@ class RotatingFrameDamping(NoForces):
         f[2] -= self.c * v[2]
 
 
+class CancelCoriolis(NoForces):
+    """+2 m Omega e_z x v_rel on each node (v_rel = v - Omega e_z x r, the velocity relative to the
+    disk): the Coriolis force of the rod's own motion in the disk's frame is cancelled. rotbeam's
+    stretch is quasi-static, so the rod without it is rotbeam's model in this respect (the
+    like-for-like comparison; docs/model.md)."""
+
+    def __init__(self, mass: np.ndarray, drive: Drive) -> None:
+        super().__init__()
+        self.two_m = 2.0 * mass
+        self.drive = drive
+
+    def apply_forces(self, system, time: float = 0.0) -> None:
+        w = self.drive.omega(float(time))
+        x, v = system.position_collection, system.velocity_collection
+        f = system.external_forces
+        f[0] -= self.two_m * w * (v[1] - w * x[0])
+        f[1] += self.two_m * w * (v[0] + w * x[1])
+
+
 class _Sim(BaseSystemCollection, Constraints, Forcing):
     pass
 
@@ -136,8 +159,10 @@ class RodRun:
     seconds: float
 
 
-def build_rod(beam: Beam, drive: Drive, n: int):
-    """The simulator, the rod and dx (see the module docstring)."""
+def build_rod(beam: Beam, drive: Drive, n: int, shear_scale: float = 1.0,
+              coriolis: bool = True):  # fmt: skip
+    """The simulator, the rod and dx (see the module docstring). `shear_scale` multiplies the
+    shear stiffness k G A; `coriolis=False` adds `CancelCoriolis`."""
     L, h, b, E, rho = beam.L, beam.h, beam.b, beam.E, beam.rho
     dx = L / (n - 0.5)
     r0 = (beam.R - L) - dx / 2
@@ -154,8 +179,8 @@ def build_rod(beam: Beam, drive: Drive, n: int):
     rod.mass_second_moment_of_inertia[...] = J[:, :, None]
     rod.inv_mass_second_moment_of_inertia[...] = np.linalg.inv(J)[:, :, None]
     G = E / (2 * (1 + NU))
-    rod.shear_matrix[0, 0, :] = SHEAR_K * G * A
-    rod.shear_matrix[1, 1, :] = SHEAR_K * G * A
+    rod.shear_matrix[0, 0, :] = shear_scale * SHEAR_K * G * A
+    rod.shear_matrix[1, 1, :] = shear_scale * SHEAR_K * G * A
     rod.shear_matrix[2, 2, :] = E * A
     sim.append(rod)
     sim.constrain(rod).using(
@@ -165,6 +190,8 @@ def build_rod(beam: Beam, drive: Drive, n: int):
     share = np.full(n + 1, dx)
     share[[0, -1]] = dx / 2
     sim.add_forcing_to(rod).using(RotatingFrameDamping, gamma=beam.gamma, share=share, drive=drive)
+    if not coriolis:
+        sim.add_forcing_to(rod).using(CancelCoriolis, mass=rod.mass.copy(), drive=drive)
     sim.finalize()
     return sim, rod, dx
 
@@ -226,13 +253,14 @@ def match_couple(rod) -> None:
 
 def run(beam: Beam, drive: Drive, n: int, transient: float, periods: int = 1,
         samples: int = 64, start=None, dt: float | None = None,
-        matched: bool = False) -> RodRun:  # fmt: skip
+        matched: bool = False, shear_scale: float = 1.0,
+        coriolis: bool = True) -> RodRun:  # fmt: skip
     """Integrate for `transient` seconds (rounded up to whole drive periods), then sample y_m at
     `samples` instants per period over `periods` periods. `start(rod)` sets the initial state
     (default: the straight rod turning rigidly at Omega(0)); `matched` then applies
-    `match_couple`."""
+    `match_couple`; `shear_scale` and `coriolis` go to `build_rod`."""
     t0 = time.perf_counter()
-    sim, rod, _ = build_rod(beam, drive, n)
+    sim, rod, _ = build_rod(beam, drive, n, shear_scale, coriolis)
     w = drive.omega(0.0)
     rod.velocity_collection[0] = -w * rod.position_collection[1]
     rod.velocity_collection[1] = w * rod.position_collection[0]
@@ -242,7 +270,7 @@ def run(beam: Beam, drive: Drive, n: int, transient: float, periods: int = 1,
     if matched:
         match_couple(rod)
     P = 1.0 / drive.f_d
-    q = math.ceil(P / samples / (dt or dt_max(n)))
+    q = math.ceil(P / samples / (dt or dt_max(n, shear_scale)))
     step = P / samples / q
     k_tr = math.ceil(transient / P - 1e-9)
     stepper = PositionVerlet()
