@@ -27,7 +27,11 @@ from rotbeam.cli import main
 from rotbeam.config.errors import RotbeamInputError
 from rotbeam.config.scenefile import load_yaml
 from rotbeam.config.schema import merge_config
-from rotbeam.simulate.studies import lines_from_config, validate_config
+from rotbeam.simulate.studies import (
+    convergence_lines,
+    lines_from_config,
+    validate_config,
+)
 
 SCHEMA = ROOT / "workflow" / "schemas" / "config.schema.yaml"
 FULL = load_yaml((ROOT / "config" / "config.yaml").read_text())
@@ -366,7 +370,7 @@ def valid_configs(draw):
 @given(cfg=valid_configs())
 def test_valid_configs_pass_and_give_finite_lines(cfg):
     checked = validate_config(cfg, SCHEMA)
-    for spec in lines_from_config(checked).values():
+    for spec in [*lines_from_config(checked).values(), *convergence_lines(checked).values()]:
         assert math.isfinite(spec["omega0"]) and spec["omega0"] >= 0
         assert all(math.isfinite(f) and f > 0 for f in spec.get("f_d", [1.0]))
 

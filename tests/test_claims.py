@@ -18,7 +18,7 @@ from rotbeam.analysis.paper_claims import load_claims
 from rotbeam.config.errors import RotbeamInputError
 from rotbeam.config.scenefile import load_yaml
 from rotbeam.model.params import BETA1, Beam
-from rotbeam.simulate.studies import grid_beam
+from rotbeam.simulate.studies import convergence_lines, grid_beam
 
 ROOT = Path(__file__).resolve().parents[1]
 CLAIMS = ROOT / "workflow/resources/paper_claims.yaml"
@@ -141,6 +141,15 @@ def test_grid_beam_keeps_what_it_says():
         z = Beam(**grid_beam(ref, E, L, 0.05, "zeta", "R", zeta=0.017))
         assert z.zeta == pytest.approx(0.017) and z.R == Beam().R
         assert z.eta == pytest.approx(2 * BETA1**2 * 0.017)
+
+
+def test_convergence_lines_of_the_config():
+    """One job runs Fig. B.8's lines, N outer and Omega_0 inner."""
+    config = load_yaml((ROOT / "config/config.yaml").read_text())
+    cv = config["convergence"]
+    lines = convergence_lines(config)
+    assert list(lines) == [f"conv_N{n}_w{w:g}" for n in cv["N"] for w in cv["omega0"]]
+    assert all(s["beam"] == config["beam"] and s["f_d"] == cv["f_d"] for s in lines.values())
 
 
 # --- through snakemake (slow) -----------------------------------------------------------------

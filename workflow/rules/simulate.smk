@@ -1,4 +1,5 @@
-# The expensive jobs: one per sweep line or kept scene, keyed by their parameters.
+# The expensive jobs, keyed by their parameters: one per sweep line of the reference beam, per
+# Fig. 7 grid beam and per kept scene, and one for the Fig. B.8 lines.
 
 
 rule sweep_line:
@@ -44,6 +45,28 @@ rule sweep_grid_beam:
         effects=config["effects"],
     script:
         "../scripts/sweep_grid_beam.py"
+
+
+# The grid-convergence lines of Fig. B.8 in one job (each is 0.02-1.4 s of work, less than a
+# job's start-up): a change of the convergence config, the beam, numerics or effects reruns all
+# of them (about 5 s of work for the full config).  sweep_line's pattern matches this file too;
+# snakemake takes the rule whose output has no wildcards.
+rule sweep_convergence:
+    output:
+        "results/sims/ref/convergence.csv",
+    log:
+        "logs/sweep_convergence.log",
+    benchmark:
+        "benchmarks/sweep_convergence.tsv"
+    conda:
+        "../envs/rotbeam.yaml"
+    params:
+        code=code_version("sweep_convergence"),
+        lines=CONVERGENCE_LINES,
+        numerics=config["numerics"],
+        effects=config["effects"],
+    script:
+        "../scripts/sweep_convergence.py"
 
 
 rule scene_series:
