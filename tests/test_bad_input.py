@@ -29,6 +29,8 @@ from rotbeam.config.scenefile import load_yaml
 from rotbeam.config.schema import merge_config
 from rotbeam.simulate.studies import (
     convergence_lines,
+    fig7_beams,
+    grid_columns,
     lines_from_config,
     validate_config,
 )
@@ -373,6 +375,8 @@ def test_valid_configs_pass_and_give_finite_lines(cfg):
     for spec in [*lines_from_config(checked).values(), *convergence_lines(checked).values()]:
         assert math.isfinite(spec["omega0"]) and spec["omega0"] >= 0
         assert all(math.isfinite(f) and f > 0 for f in spec.get("f_d", [1.0]))
+    columns, _ = grid_columns(fig7_beams(checked))  # one sweep job per (E, L) column
+    assert sum(map(len, columns.values())) == len(fig7_beams(checked))
 
 
 def numeric_leaves(value, path=()):

@@ -8,7 +8,7 @@ import pytest
 from conftest import dry_run_jobs, job_counts, snakemake
 
 pytestmark = pytest.mark.slow  # the quick config end to end: minutes
-SIMULATIONS = ("sweep_line", "sweep_grid_beam", "sweep_convergence", "scene_series", "shapes")
+SIMULATIONS = ("sweep_line", "sweep_grid_column", "sweep_convergence", "scene_series", "shapes")
 
 
 def targets(workdir: Path) -> list[Path]:
@@ -93,8 +93,16 @@ def test_c_hypotheses_rerun_on_their_own_config_only(quick_run):
 
 def test_changing_the_grid_reruns_simulations(quick_run):
     jobs = dry_run_jobs(quick_run, "--config", "numerics={'N': 14}")
-    assert jobs.get("sweep_line", 0) > 0 and jobs.get("sweep_grid_beam", 0) > 0
+    assert jobs.get("sweep_line", 0) > 0 and jobs.get("sweep_grid_column", 0) > 0
     assert jobs.get("sweep_convergence") == 1, jobs
+
+
+def test_a_new_E_runs_only_its_grid_columns(quick_run):
+    """One sweep job per (E, L) column of the Fig. 7 grid: a new E adds one per L, nothing else
+    simulates again."""
+    jobs = dry_run_jobs(quick_run, "--config", "fig7={'E': [1.0e+5, 1.0e+9, 1.0e+7]}")
+    assert jobs.get("sweep_grid_column") == 2, jobs  # the quick config's two L
+    assert not {"sweep_line", "sweep_convergence", "scene_series", "shapes"} & set(jobs), jobs
 
 
 def test_bad_config_stops_before_any_job(tmp_path, quick_run):

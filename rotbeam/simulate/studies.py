@@ -1,7 +1,7 @@
 """The studies of the paper as plain data built from the workflow config (no snakemake here).
 
 A *line* is one sweep: a beam, a mean speed Omega_0 and a list (or an f_0-relative scan) of
-drive frequencies (a job of its own, or run with the other lines of its Fig. 7 grid beam or of
+drive frequencies (a job of its own, or run with the other lines of its Fig. 7 grid column or of
 Fig. B.8 in one job).  A *series* is one scene whose time series is kept.  Ids are readable and
 carry the values that define them, so that an output path names its parameters.
 """
@@ -113,9 +113,9 @@ def run_grid_lines(
     beams: dict[str, dict[str, float]], spec: dict[str, Any], amplitude: float, effects, numerics,
     log: Callable[[str], None] | None = None,
 ) -> dict[str, list]:  # fmt: skip
-    """Every boundary line of a grid in this process (one job per grid beam or per hypothesis
-    instead of one per line: a job's start-up, ~1 s of imports, costs more than a small line):
-    per beam id, its line DataFrames (column `c_max_target` names the line)."""
+    """Every boundary line of a grid in this process (one job per (E, L) column of the grid or
+    per hypothesis instead of one per line: a job's start-up, ~1 s of imports, costs more than a
+    small line): per beam id, its line DataFrames (column `c_max_target` names the line)."""
     from .sweeps import scan_line
 
     out = {}
@@ -130,6 +130,26 @@ def run_grid_lines(
             df.insert(0, "c_max_target", ls["c_max"])
             out[bid].append(df)
     return out
+
+
+def grid_columns(
+    beams: dict[str, dict[str, float]],
+) -> tuple[dict[str, dict[str, dict[str, float]]], list[str]]:
+    """A grid's beams by (E, L) column, for one sweep job per column (its beams differ in h/L
+    only): {column id 'E<E>_L<L>': {beam id: beam}}, and the tails of the beam ids after their
+    column id ('_hL0.05', ...; with the grid's tag if it has one), the same in every column."""
+    columns: dict[str, dict[str, dict[str, float]]] = {}
+    for bid, beam in beams.items():
+        column = f"E{g(beam['E'])}_L{g(beam['L'])}"
+        if not bid.startswith(column + "_"):
+            raise ValueError(f"grid beam id {bid!r} does not start with its column {column!r}")
+        columns.setdefault(column, {})[bid] = beam
+    tails = {c: [bid[len(c) :] for bid in col] for c, col in columns.items()}
+    first = next(iter(tails.values()), [])
+    for c, t in tails.items():
+        if t != first:
+            raise ValueError(f"grid column {c}: beams {t}, another column {first}")
+    return columns, first
 
 
 def check_config(config: dict[str, Any], schema: dict | None = None) -> None:

@@ -13,6 +13,7 @@ from rotbeam.simulate.studies import (
     REF,
     convergence_lines,
     fig7_beams,
+    grid_columns,
     lines_from_config,
     repro_fig7_variants,
     series_from_config,
@@ -34,6 +35,7 @@ except RotbeamInputError as exc:
 LINES = lines_from_config(config)
 SERIES = series_from_config(config)
 FIG7_BEAMS = fig7_beams(config)
+FIG7_COLUMNS, FIG7_HL = grid_columns(FIG7_BEAMS)  # one sweep job per (E, L) column
 CONVERGENCE_LINES = convergence_lines(config)  # Fig. B.8's lines, one sweep job
 
 
