@@ -27,7 +27,13 @@ from rotbeam.cli import main
 from rotbeam.config.errors import RotbeamInputError
 from rotbeam.config.scenefile import load_yaml
 from rotbeam.config.schema import merge_config
-from rotbeam.simulate.studies import lines_from_config, validate_config
+from rotbeam.simulate.studies import (
+    convergence_lines,
+    fig7_beams,
+    grid_columns,
+    lines_from_config,
+    validate_config,
+)
 
 SCHEMA = ROOT / "workflow" / "schemas" / "config.schema.yaml"
 FULL = load_yaml((ROOT / "config" / "config.yaml").read_text())
@@ -366,9 +372,11 @@ def valid_configs(draw):
 @given(cfg=valid_configs())
 def test_valid_configs_pass_and_give_finite_lines(cfg):
     checked = validate_config(cfg, SCHEMA)
-    for spec in lines_from_config(checked).values():
+    for spec in [*lines_from_config(checked).values(), *convergence_lines(checked).values()]:
         assert math.isfinite(spec["omega0"]) and spec["omega0"] >= 0
         assert all(math.isfinite(f) and f > 0 for f in spec.get("f_d", [1.0]))
+    columns, _ = grid_columns(fig7_beams(checked))  # one sweep job per (E, L) column
+    assert sum(map(len, columns.values())) == len(fig7_beams(checked))
 
 
 def numeric_leaves(value, path=()):

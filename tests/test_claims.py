@@ -18,7 +18,7 @@ from rotbeam.analysis.paper_claims import load_claims
 from rotbeam.config.errors import RotbeamInputError
 from rotbeam.config.scenefile import load_yaml
 from rotbeam.model.params import BETA1, Beam
-from rotbeam.simulate.studies import grid_beam
+from rotbeam.simulate.studies import convergence_lines, fig7_beams, grid_beam, grid_columns
 
 ROOT = Path(__file__).resolve().parents[1]
 CLAIMS = ROOT / "workflow/resources/paper_claims.yaml"
@@ -141,6 +141,24 @@ def test_grid_beam_keeps_what_it_says():
         z = Beam(**grid_beam(ref, E, L, 0.05, "zeta", "R", zeta=0.017))
         assert z.zeta == pytest.approx(0.017) and z.R == Beam().R
         assert z.eta == pytest.approx(2 * BETA1**2 * 0.017)
+
+
+def test_grid_columns_and_convergence_lines_of_the_config():
+    """One sweep job per (E, L) column of the Fig. 7 grid writes each of its beams' files; one
+    job runs Fig. B.8's lines, N outer and Omega_0 inner."""
+    config = load_yaml((ROOT / "config/config.yaml").read_text())
+    f7, beams = config["fig7"], fig7_beams(config)
+    columns, tails = grid_columns(beams)
+    assert len(columns) == len(f7["E"]) * len(f7["L"]) and len(tails) == len(f7["h_over_L"])
+    assert {c + t for c in columns for t in tails} == set(beams)
+    assert {b: beam for col in columns.values() for b, beam in col.items()} == beams
+    assert columns["E1e+07_L0.0001"]["E1e+07_L0.0001_hL0.05"]["h"] == pytest.approx(5e-6)
+    tagged = fig7_beams({**config, "fig7": {**f7, "damping": "eta", "geometry": "delta"}})
+    assert grid_columns(tagged)[1] == [t + "_eta-delta" for t in tails]
+    cv = config["convergence"]
+    lines = convergence_lines(config)
+    assert list(lines) == [f"conv_N{n}_w{w:g}" for n in cv["N"] for w in cv["omega0"]]
+    assert all(s["beam"] == config["beam"] and s["f_d"] == cv["f_d"] for s in lines.values())
 
 
 # --- through snakemake (slow) -----------------------------------------------------------------

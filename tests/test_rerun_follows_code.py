@@ -35,7 +35,7 @@ BOUNDARY_RULES = {
     "repro_fn_zeta",
     "reproduction",
 }
-SIMULATIONS = {"sweep_line", "sweep_grid_beam", "scene_series", "shapes"}
+SIMULATIONS = {"sweep_line", "sweep_grid_column", "sweep_convergence", "scene_series", "shapes"}
 
 
 def plan(work: Path) -> tuple[set[str], set[str], list[str]]:

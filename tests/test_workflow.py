@@ -8,6 +8,7 @@ import pytest
 from conftest import dry_run_jobs, job_counts, snakemake
 
 pytestmark = pytest.mark.slow  # the quick config end to end: minutes
+SIMULATIONS = ("sweep_line", "sweep_grid_column", "sweep_convergence", "scene_series", "shapes")
 
 
 def targets(workdir: Path) -> list[Path]:
@@ -60,7 +61,7 @@ def test_changing_a_threshold_reruns_no_simulation(quick_run):
     jobs = dry_run_jobs(quick_run, "--config", "thresholds=[0.05,0.2]")
     assert jobs.get("boundary_table") == 1 and jobs.get("boundary_grid") == 1
     assert jobs.get("c_per_threshold", 0) == 1
-    for sim in ("sweep_line", "sweep_grid_beam", "scene_series", "shapes"):
+    for sim in SIMULATIONS:
         assert sim not in jobs, jobs
 
 
@@ -84,7 +85,7 @@ def test_c_hypotheses_table_has_every_hypothesis_and_threshold(quick_run):
 def test_c_hypotheses_rerun_on_their_own_config_only(quick_run):
     jobs = dry_run_jobs(quick_run, "--config", "c_hypotheses={'points': 9}")
     assert jobs.get("c_hypotheses") == 1, jobs
-    for sim in ("sweep_line", "sweep_grid_beam", "scene_series", "shapes"):  # none reruns
+    for sim in SIMULATIONS:  # none reruns
         assert sim not in jobs, jobs
     for other in ("thresholds=[0.05,0.2]", "numerics={'N': 14}", "boundary={'points': 9}"):
         assert "c_hypotheses" not in dry_run_jobs(quick_run, "--config", other), other
@@ -92,7 +93,16 @@ def test_c_hypotheses_rerun_on_their_own_config_only(quick_run):
 
 def test_changing_the_grid_reruns_simulations(quick_run):
     jobs = dry_run_jobs(quick_run, "--config", "numerics={'N': 14}")
-    assert jobs.get("sweep_line", 0) > 0 and jobs.get("sweep_grid_beam", 0) > 0
+    assert jobs.get("sweep_line", 0) > 0 and jobs.get("sweep_grid_column", 0) > 0
+    assert jobs.get("sweep_convergence") == 1, jobs
+
+
+def test_a_new_E_runs_only_its_grid_columns(quick_run):
+    """One sweep job per (E, L) column of the Fig. 7 grid: a new E adds one per L, nothing else
+    simulates again."""
+    jobs = dry_run_jobs(quick_run, "--config", "fig7={'E': [1.0e+5, 1.0e+9, 1.0e+7]}")
+    assert jobs.get("sweep_grid_column") == 2, jobs  # the quick config's two L
+    assert not {"sweep_line", "sweep_convergence", "scene_series", "shapes"} & set(jobs), jobs
 
 
 def test_bad_config_stops_before_any_job(tmp_path, quick_run):

@@ -1,7 +1,8 @@
 """The studies of the paper as plain data built from the workflow config (no snakemake here).
 
-A *line* is one sweep job: a beam, a mean speed Omega_0 and a list (or an f_0-relative scan) of
-drive frequencies.  A *series* is one scene whose time series is kept.  Ids are readable and
+A *line* is one sweep: a beam, a mean speed Omega_0 and a list (or an f_0-relative scan) of
+drive frequencies (a job of its own, or run with the other lines of its Fig. 7 grid column or of
+Fig. B.8 in one job).  A *series* is one scene whose time series is kept.  Ids are readable and
 carry the values that define them, so that an output path names its parameters.
 """
 
@@ -112,9 +113,9 @@ def run_grid_lines(
     beams: dict[str, dict[str, float]], spec: dict[str, Any], amplitude: float, effects, numerics,
     log: Callable[[str], None] | None = None,
 ) -> dict[str, list]:  # fmt: skip
-    """Every boundary line of a grid in this process (one job per grid beam or per hypothesis
-    instead of one per line: a job's start-up, ~1 s of imports, costs more than a small line):
-    per beam id, its line DataFrames (column `c_max_target` names the line)."""
+    """Every boundary line of a grid in this process (one job per (E, L) column of the grid or
+    per hypothesis instead of one per line: a job's start-up, ~1 s of imports, costs more than a
+    small line): per beam id, its line DataFrames (column `c_max_target` names the line)."""
     from .sweeps import scan_line
 
     out = {}
@@ -129,6 +130,26 @@ def run_grid_lines(
             df.insert(0, "c_max_target", ls["c_max"])
             out[bid].append(df)
     return out
+
+
+def grid_columns(
+    beams: dict[str, dict[str, float]],
+) -> tuple[dict[str, dict[str, dict[str, float]]], list[str]]:
+    """A grid's beams by (E, L) column, for one sweep job per column (its beams differ in h/L
+    only): {column id 'E<E>_L<L>': {beam id: beam}}, and the tails of the beam ids after their
+    column id ('_hL0.05', ...; with the grid's tag if it has one), the same in every column."""
+    columns: dict[str, dict[str, dict[str, float]]] = {}
+    for bid, beam in beams.items():
+        column = f"E{g(beam['E'])}_L{g(beam['L'])}"
+        if not bid.startswith(column + "_"):
+            raise ValueError(f"grid beam id {bid!r} does not start with its column {column!r}")
+        columns.setdefault(column, {})[bid] = beam
+    tails = {c: [bid[len(c) :] for bid in col] for c, col in columns.items()}
+    first = next(iter(tails.values()), [])
+    for c, t in tails.items():
+        if t != first:
+            raise ValueError(f"grid column {c}: beams {t}, another column {first}")
+    return columns, first
 
 
 def check_config(config: dict[str, Any], schema: dict | None = None) -> None:
@@ -242,7 +263,8 @@ def boundary_lines(beam: dict[str, float], c_max: list[float], scan: dict, ampli
 
 
 def lines_from_config(config: dict[str, Any]) -> dict[tuple[str, str], dict[str, Any]]:
-    """Every sweep line of the workflow, keyed by (beam id, line id)."""
+    """Every sweep line of the workflow but Fig. B.8's (`convergence_lines`), keyed by (beam id,
+    line id)."""
     a = float(config["amplitude"])
     ref = config["beam"]
     out: dict[tuple[str, str], dict[str, Any]] = {}
@@ -263,14 +285,47 @@ def lines_from_config(config: dict[str, Any]) -> dict[tuple[str, str], dict[str,
     for bid, beam in fig7_beams(config).items():
         lines, _ = boundary_lines(beam, f7["c_max"], f7, a)
         out.update({(bid, k): v for k, v in lines.items()})
+    return out
+
+
+def convergence_lines(config: dict[str, Any]) -> dict[str, dict[str, Any]]:
+    """The grid-convergence lines of Fig. B.8 (App. C), keyed by line id conv_N{N}_w{Omega_0}:
+    the reference beam at each Omega_0 and the config's drive frequencies on a grid of N points,
+    N outer and Omega_0 inner (the row order of Fig. B.8's table)."""
+    a = float(config["amplitude"])
     cv = config["convergence"]
+    out = {}
     for N in cv["N"]:
         for w in cv["omega0"]:
-            out[(REF, f"conv_N{N}_w{g(w)}")] = {
-                "beam": ref, "omega0": float(w), "amplitude": a, "N": int(N),
+            out[f"conv_N{N}_w{g(w)}"] = {
+                "beam": config["beam"], "omega0": float(w), "amplitude": a, "N": int(N),
                 "f_d": [float(f) for f in cv["f_d"]],
             }  # fmt: skip
     return out
+
+
+def run_convergence_lines(
+    lines: dict[str, dict[str, Any]], effects, numerics: dict[str, Any],
+    log: Callable[[str], None] | None = None,
+):  # fmt: skip
+    """Every grid-convergence line (`convergence_lines`) in this process, one job for all (a line
+    is 0.02-1.4 s of work, less than a job's start-up): one DataFrame, the lines' rows in the
+    order of `lines`.  Each line studies the raw grid: `numerics` (the config's) with the line's
+    N and no Richardson extrapolation."""
+    import pandas as pd
+
+    from .sweeps import numerics_from_config, scan_line
+
+    frames = []
+    for lid, spec in lines.items():
+        f_ds = scan_frequencies(spec)
+        if log:
+            log(f"line {lid}: {len(f_ds)} points")
+        num = numerics_from_config({**numerics, "N": spec["N"], "extrapolate": False})
+        frames.append(scan_line(Beam(**spec["beam"]), spec["omega0"], f_ds,
+                                amplitude=spec["amplitude"], effects=effects, numerics=num,
+                                log=log))  # fmt: skip
+    return pd.concat(frames, ignore_index=True)
 
 
 def series_from_config(config: dict[str, Any]) -> dict[str, dict[str, Any]]:

@@ -11,7 +11,9 @@ from rotbeam import provenance
 from rotbeam.config.errors import RotbeamInputError
 from rotbeam.simulate.studies import (
     REF,
+    convergence_lines,
     fig7_beams,
+    grid_columns,
     lines_from_config,
     repro_fig7_variants,
     series_from_config,
@@ -33,6 +35,8 @@ except RotbeamInputError as exc:
 LINES = lines_from_config(config)
 SERIES = series_from_config(config)
 FIG7_BEAMS = fig7_beams(config)
+FIG7_COLUMNS, FIG7_HL = grid_columns(FIG7_BEAMS)  # one sweep job per (E, L) column
+CONVERGENCE_LINES = convergence_lines(config)  # Fig. B.8's lines, one sweep job
 
 
 wildcard_constraints:
@@ -156,12 +160,8 @@ def fig7_grid_files(h_over_L=None):
 
 
 def ref_line_files():
-    """Every reference-beam sweep line but the grid-convergence ones (their N differs)."""
-    return sorted(
-        f"results/sims/{b}/{line}.csv"
-        for (b, line) in LINES
-        if b == REF and not line.startswith("conv_")
-    )
+    """Every reference-beam sweep line (the grid-convergence ones are not among them)."""
+    return sorted(f"results/sims/{b}/{line}.csv" for (b, line) in LINES if b == REF)
 
 
 def c_hypotheses_input(wildcards):

@@ -101,11 +101,7 @@ rule fig4:
 
 rule figB8:
     input:
-        lines=expand(
-            "results/sims/ref/conv_N{N}_w{w}.csv",
-            N=config["convergence"]["N"],
-            w=[format(float(w), "g") for w in config["convergence"]["omega0"]],
-        ),
+        lines="results/sims/ref/convergence.csv",
     output:
         pdf=report(
             "results/figB8/convergence.pdf",

@@ -1,4 +1,5 @@
-# The expensive jobs: one per sweep line or kept scene, keyed by their parameters.
+# The expensive jobs, keyed by their parameters: one per sweep line of the reference beam, per
+# (E, L) column of the Fig. 7 grid and per kept scene, and one for the Fig. B.8 lines.
 
 
 rule sweep_line:
@@ -9,7 +10,7 @@ rule sweep_line:
     benchmark:
         "benchmarks/sweep_line/{beam}/{line}.tsv"
     wildcard_constraints:
-        beam=REF,  # the Fig. 7 grid beams run all their lines in one job (sweep_grid_beam)
+        beam=REF,  # the Fig. 7 grid beams run all their lines in one job (sweep_grid_column)
     conda:
         "../envs/rotbeam.yaml"
     params:
@@ -21,29 +22,52 @@ rule sweep_line:
         "../scripts/sweep_line.py"
 
 
-# One job per Fig. 7 grid beam (its 3-4 boundary lines of a few points each): a job's start-up
-# costs about as much as such a line.  Reruns follow the beam: a change of fig7's c_max, scan,
-# numerics or effects reruns every beam, a new E, L or h/L only the new beams.
-rule sweep_grid_beam:
+# One job per (E, L) column of the Fig. 7 grid: its beams (one per h/L), each 3-4 boundary lines
+# of a few points; a job's start-up costs about as much as such a line.  A job writes every beam
+# of its column, so reruns follow the column: a change of fig7's c_max, scan, h/L values,
+# numerics or effects reruns every column, a new E or L only the new columns.
+rule sweep_grid_column:
     output:
-        "results/sims/{beam}/lines.csv",
+        expand("results/sims/{{column}}{hl}/lines.csv", hl=FIG7_HL),
     log:
-        "logs/sweep_grid_beam/{beam}.log",
+        "logs/sweep_grid_column/{column}.log",
     benchmark:
-        "benchmarks/sweep_grid_beam/{beam}.tsv"
+        "benchmarks/sweep_grid_column/{column}.tsv"
     wildcard_constraints:
-        beam="E[^/]+",
+        column="E[^/_]+_L[^/_]+",
     conda:
         "../envs/rotbeam.yaml"
     params:
-        code=code_version("sweep_grid_beam"),
-        beam=lambda w: FIG7_BEAMS[w.beam],
+        code=code_version("sweep_grid_column"),
+        beams=lambda w: FIG7_COLUMNS[w.column],
         spec={k: config["fig7"][k] for k in ("c_max", "lo", "hi", "points")},
         amplitude=config["amplitude"],
         numerics=config["numerics"],
         effects=config["effects"],
     script:
-        "../scripts/sweep_grid_beam.py"
+        "../scripts/sweep_grid_column.py"
+
+
+# The grid-convergence lines of Fig. B.8 in one job (each is 0.02-1.4 s of work, less than a
+# job's start-up): a change of the convergence config, the beam, numerics or effects reruns all
+# of them (about 5 s of work for the full config).  sweep_line's pattern matches this file too;
+# snakemake takes the rule whose output has no wildcards.
+rule sweep_convergence:
+    output:
+        "results/sims/ref/convergence.csv",
+    log:
+        "logs/sweep_convergence.log",
+    benchmark:
+        "benchmarks/sweep_convergence.tsv"
+    conda:
+        "../envs/rotbeam.yaml"
+    params:
+        code=code_version("sweep_convergence"),
+        lines=CONVERGENCE_LINES,
+        numerics=config["numerics"],
+        effects=config["effects"],
+    script:
+        "../scripts/sweep_convergence.py"
 
 
 rule scene_series:

@@ -9,6 +9,6 @@ from rotbeam.report.io import write_csv
 from rotbeam.report.joblog import job_log
 
 with job_log(snakemake.log[0], snakemake.input, snakemake.output, snakemake.rule):
-    df = pd.concat([pd.read_csv(f) for f in snakemake.input.lines], ignore_index=True)
+    df = pd.read_csv(snakemake.input.lines)  # every line of sweep_convergence, one after another
     write_csv(df, snakemake.output.table)
     figB8_convergence(df, snakemake.output.pdf, snakemake.output.png)

@@ -11,10 +11,6 @@ from rotbeam.simulate.sweeps import numerics_from_config, scan_line
 with job_log(snakemake.log[0], snakemake.input, snakemake.output, snakemake.rule) as log:
     say = log.info  # one line per point of the line (scan_line's progress)
     spec = snakemake.params.spec
-    numerics = dict(snakemake.params.numerics)
-    if "N" in spec:  # the grid-convergence lines (Fig. B.8) study the raw grid: no extrapolation
-        numerics["N"] = spec["N"]
-        numerics["extrapolate"] = False
     f_ds = scan_frequencies(spec)
     say(f"line {snakemake.wildcards.line} of beam {snakemake.wildcards.beam}: {len(f_ds)} points")
     df = scan_line(
@@ -23,7 +19,7 @@ with job_log(snakemake.log[0], snakemake.input, snakemake.output, snakemake.rule
         f_ds,
         amplitude=spec["amplitude"],
         effects=Effects.from_list(snakemake.params.effects),
-        numerics=numerics_from_config(numerics),
+        numerics=numerics_from_config(snakemake.params.numerics),
         log=say,
     )
     if "c_max" in spec:
