@@ -80,6 +80,7 @@ def code_dependencies(script: str | Path, package_dir: str | Path) -> list[Path]
     root = package_dir.parent
     top = package_dir.name
     found: set[Path] = set()
+    files: dict[str, Path | None] = {}  # dotted name -> its file, looked up once per call
     todo: list[tuple[Path, str | None]] = [(Path(script).resolve(), None)]
     while todo:
         path, package = todo.pop()
@@ -87,7 +88,9 @@ def code_dependencies(script: str | Path, package_dir: str | Path) -> list[Path]
             if name.split(".")[0] != top:
                 continue
             for dotted in _with_parents(name):
-                module = _module_file(dotted, root)
+                if dotted not in files:
+                    files[dotted] = _module_file(dotted, root)
+                module = files[dotted]
                 if module is None or module in found:
                     continue
                 found.add(module)

@@ -1,3 +1,4 @@
+import functools
 import importlib.metadata
 import platform
 import sys
@@ -66,8 +67,9 @@ PACKAGE_DIR = Path(rotbeam.__file__).parent
 SCRIPTS_DIR = Path(workflow.basedir) / "workflow" / "scripts"
 
 
+@functools.cache
 def code_version(script):
-    """The code hash of workflow/scripts/{script}.py (see above)."""
+    """The code hash of workflow/scripts/{script}.py (see above), once per script and parse."""
     return provenance.code_version(SCRIPTS_DIR / f"{script}.py", PACKAGE_DIR)[1]
 
 
