@@ -6,7 +6,6 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import brentq
 
 from ..config.checks import check_threshold
 
@@ -77,6 +76,8 @@ def first_crossing(
         root = a + (threshold - va) * (b - a) / (vb - va)
         msg = "linear interpolation"
     else:
+        from scipy.optimize import brentq  # here: a figure job that plots spectra never needs it
+
         root = brentq(lambda x: refine(x) - threshold, a, b, xtol=xtol)
         msg = "brentq"
     return Crossing(True, b, float(root), (a, b), msg)
@@ -90,6 +91,7 @@ def critical_from_scan(f_ds: np.ndarray, delta: np.ndarray, threshold: float) ->
     no simulation.  Failed points (NaN) are dropped and counted.
     """
     from scipy.interpolate import PchipInterpolator
+    from scipy.optimize import brentq
 
     threshold = check_threshold(threshold)
     f_ds = np.asarray(f_ds, dtype=float)

@@ -11,6 +11,7 @@ rule sweep_line:
         "benchmarks/sweep_line/{beam}/{line}.tsv"
     wildcard_constraints:
         beam=REF,  # the Fig. 7 grid beams run all their lines in one job (sweep_grid_column)
+    priority: 1  # long jobs first: the quick figures and tables fill the cores at the end
     conda:
         "../envs/rotbeam.yaml"
     params:
@@ -35,6 +36,7 @@ rule sweep_grid_column:
         "benchmarks/sweep_grid_column/{column}.tsv"
     wildcard_constraints:
         column="E[^/_]+_L[^/_]+",
+    priority: 1  # long jobs first: the quick figures and tables fill the cores at the end
     conda:
         "../envs/rotbeam.yaml"
     params:
@@ -59,6 +61,7 @@ rule sweep_convergence:
         "logs/sweep_convergence.log",
     benchmark:
         "benchmarks/sweep_convergence.tsv"
+    priority: 1  # long jobs first: the quick figures and tables fill the cores at the end
     conda:
         "../envs/rotbeam.yaml"
     params:
