@@ -92,8 +92,11 @@ def test_c_hypotheses_rerun_on_their_own_config_only(quick_run):
 
 
 def test_changing_the_grid_reruns_simulations(quick_run):
+    """The grid N reruns every sweep but Fig. B.8's, whose lines set their own N."""
     jobs = dry_run_jobs(quick_run, "--config", "numerics={'N': 14}")
     assert jobs.get("sweep_line", 0) > 0 and jobs.get("sweep_grid_column", 0) > 0
+    assert "sweep_convergence" not in jobs, jobs
+    jobs = dry_run_jobs(quick_run, "--config", "numerics={'rtol': 1.0e-6}")
     assert jobs.get("sweep_convergence") == 1, jobs
 
 

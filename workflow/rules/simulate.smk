@@ -51,9 +51,10 @@ rule sweep_grid_column:
 
 
 # The grid-convergence lines of Fig. B.8 in one job (each is 0.02-1.4 s of work, less than a
-# job's start-up): a change of the convergence config, the beam, numerics or effects reruns all
-# of them (about 5 s of work for the full config).  sweep_line's pattern matches this file too;
-# snakemake takes the rule whose output has no wildcards.
+# job's start-up): a change of the convergence config, the beam, effects or numerics other than
+# N and extrapolate (each line sets its own N, never extrapolated) reruns all of them (about 3 s
+# of work for the full config).  sweep_line's pattern matches this file too; snakemake takes the
+# rule whose output has no wildcards.
 rule sweep_convergence:
     output:
         "results/sims/ref/convergence.csv",
@@ -67,7 +68,11 @@ rule sweep_convergence:
     params:
         code=code_version("sweep_convergence"),
         lines=CONVERGENCE_LINES,
-        numerics=config["numerics"],
+        numerics={
+            k: v
+            for k, v in config["numerics"].items()
+            if k not in ("N", "extrapolate")
+        },
         effects=config["effects"],
     script:
         "../scripts/sweep_convergence.py"
