@@ -25,7 +25,7 @@ from __future__ import annotations
 import math
 import time
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 from scipy.integrate import solve_ivp
@@ -172,10 +172,7 @@ def response_of(
 
     qs, _ = initial_state(model, dl, "quasistatic")  # the tolerances' scale, also from rest
     z = qs if start == "quasistatic" else initial_state(model, dl, start)[0]
-    scale = max(float(np.max(np.abs(qs[:n]))), 1e-6)
-    atol = np.concatenate(
-        [np.full(n, 1e-3 * rtol * scale), np.full(n, 1e-3 * rtol * scale * dl.omega)]
-    )
+    atol = _atol(qs[:n], rtol, dl.omega)
     total = transient_periods + section_periods
     share = t0 + max_seconds * transient_periods / total
     z, done, note = _transient(rhs, jac, z, P, transient_periods, rtol, atol, share, progress,
@@ -188,6 +185,31 @@ def response_of(
     ly = largest_lyapunov(rhs, jac, z, P, section_periods, t0=done * P, rtol=rtol, atol=atol,
                           samples_per_interval=SAMPLES, deadline=deadline,
                           progress=per_interval)  # fmt: skip
+    res = _classified(model, T, P, ly, tol)
+    periods = done + ly.intervals
+    msg = (f"{res.message}: {periods} periods at N={N} ({done} transient, from {start}, rtol "
+           f"{rtol:g}), {_exponent_text(res, ly, T)}"
+           + (f"; {note}" if note else "")
+           + (f"; {ly.message}" if "stopped" in ly.message or "failed" in ly.message
+              else ""))  # fmt: skip
+    return replace(res, periods=periods, N=N, start=start, message=msg,
+                   seconds=time.perf_counter() - t0)  # fmt: skip
+
+
+def _atol(theta_qs: np.ndarray, rtol: float, omega: float) -> np.ndarray:
+    """Absolute tolerances of angles and rates: 1e-3 rtol of the quasi-static state's largest
+    angle (and that times the drive's angular frequency for the rates)."""
+    scale = max(float(np.max(np.abs(theta_qs))), 1e-6)
+    n = theta_qs.size
+    return np.concatenate([np.full(n, 1e-3 * rtol * scale),
+                           np.full(n, 1e-3 * rtol * scale * omega)])  # fmt: skip
+
+
+def _classified(model: DiscreteElastica, T: float, P: float, ly, tol: float) -> ResponseResult:
+    """The class of a time-stepped section (`largest_lyapunov`'s result) with its Poincare
+    section in y_m, spectrum and exponent; `message` holds the class alone (response_of adds the
+    run's account); periods, N, start and seconds are response_of's to fill."""
+    n = model.n
     sec = ly.section
     dist = section_distances(sec)
     # the second half of the section only: a chaotic transient the run began in stays in the
@@ -200,14 +222,6 @@ def response_of(
     theta_all = np.concatenate(ly.samples, axis=1) if ly.samples else theta_s
     y_all = np.atleast_1d(model.grid.midspan(theta_all[:n]))
     f, amp, peaks = _spectrum(y_all, P * T / SAMPLES)
-    periods = done + ly.intervals
-    msg = (f"{response}{f' (period {q} P)' if q > 1 else ''}: {periods} periods at N={N} "
-           f"({done} transient, from {start}, rtol {rtol:g}), largest Lyapunov exponent "
-           f"{lam / T:.3g} +- {spread / T:.2g} 1/s (last half; whole run {ly.exponent / T:.3g}), "
-           f"section distance d(1)={dist[0]:.2g}"
-           + (f"; {note}" if note else "")
-           + (f"; {ly.message}" if "stopped" in ly.message or "failed" in ly.message
-              else ""))  # fmt: skip
     return ResponseResult(
         response=response,
         period_multiple=q,
@@ -217,11 +231,17 @@ def response_of(
         spectrum_hz=f,
         spectrum=amp,
         peaks_hz=peaks,
-        periods=periods,
-        N=N,
-        seconds=time.perf_counter() - t0,
-        message=msg,
+        periods=0,
+        N=0,
+        seconds=0.0,
+        message=f"{response}{f' (period {q} P)' if q > 1 else ''}",
         distances=dist,
         lyapunov_running=np.asarray(ly.running, dtype=float) / T,
-        start=start,
+        start="",
     )
+
+
+def _exponent_text(res: ResponseResult, ly, T: float) -> str:
+    return (f"largest Lyapunov exponent {res.lyapunov_max:.3g} +- {res.lyapunov_spread:.2g} 1/s "
+            f"(last half; whole run {ly.exponent / T:.3g}), section distance "
+            f"d(1)={res.distances[0]:.2g}")  # fmt: skip
