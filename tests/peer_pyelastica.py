@@ -116,12 +116,17 @@ class RotatingFrameDamping(NoForces):
         self.drive = drive
 
     def apply_forces(self, system, time: float = 0.0) -> None:
-        w = self.drive.omega(float(time))
-        x, v = system.position_collection, system.velocity_collection
+        vx, vy = _relative_velocity(system, self.drive.omega(float(time)))
         f = system.external_forces
-        f[0] -= self.c * (v[0] + w * x[1])
-        f[1] -= self.c * (v[1] - w * x[0])
-        f[2] -= self.c * v[2]
+        f[0] -= self.c * vx
+        f[1] -= self.c * vy
+        f[2] -= self.c * system.velocity_collection[2]
+
+
+def _relative_velocity(system, w: float) -> tuple[np.ndarray, np.ndarray]:
+    """The nodes' in-plane velocity relative to the disk turning at w: v - w e_z x r."""
+    x, v = system.position_collection, system.velocity_collection
+    return v[0] + w * x[1], v[1] - w * x[0]
 
 
 class CancelCoriolis(NoForces):
@@ -137,10 +142,10 @@ class CancelCoriolis(NoForces):
 
     def apply_forces(self, system, time: float = 0.0) -> None:
         w = self.drive.omega(float(time))
-        x, v = system.position_collection, system.velocity_collection
+        vx, vy = _relative_velocity(system, w)
         f = system.external_forces
-        f[0] -= self.two_m * w * (v[1] - w * x[0])
-        f[1] += self.two_m * w * (v[0] + w * x[1])
+        f[0] -= self.two_m * w * vy
+        f[1] += self.two_m * w * vx
 
 
 class _Sim(BaseSystemCollection, Constraints, Forcing):

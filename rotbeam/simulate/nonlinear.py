@@ -145,9 +145,7 @@ def _window(spec: NonlinearSpec, sweep: str, bb: BeamBranch | None) -> tuple[np.
     if not math.isfinite(f_loss):
         return f, None
     f = f[np.abs(f - f_loss) <= spec.sweep_window + 1e-9]
-    pts = bb.branch.points
-    first = bb.branch.first_unstable()
-    stable = pts[: len(pts) if first is None else first]
+    stable = bb.branch.stable_start()
     if not stable or f.size == 0:
         return f, None
     near = min(stable, key=lambda pt: abs(pt.p - f[0]))
@@ -224,11 +222,9 @@ def departure(bb: BeamBranch, sweep_rows: list[dict], tol: float = 0.02) -> tupl
     (f_d of the last sweep point on it, f_d of the first one off it), in the sweep's order.  A
     point is on it when its f_d lies in the stable part's range and its RMS is within `tol`
     (relative) of the stable part's RMS interpolated there; (nan, nan) if it never leaves."""
-    pts = bb.branch.points
-    first = bb.branch.first_unstable()
-    i = len(pts) if first is None else first
-    f = np.array([pt.p for pt in pts[:i]])
-    y = np.array([rms(bb.problem.midspan(pt.x, pt.p)) for pt in pts[:i]])
+    stable = bb.branch.stable_start()
+    f = np.array([pt.p for pt in stable])
+    y = np.array([rms(bb.problem.midspan(pt.x, pt.p)) for pt in stable])
     order = np.argsort(f)
     f, y = f[order], y[order]
     last = math.nan

@@ -25,7 +25,7 @@ from __future__ import annotations
 import math
 import time
 from collections.abc import Callable
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 
 import numpy as np
 from scipy.integrate import solve_ivp
@@ -185,15 +185,18 @@ def response_of(
     ly = largest_lyapunov(rhs, jac, z, P, section_periods, t0=done * P, rtol=rtol, atol=atol,
                           samples_per_interval=SAMPLES, deadline=deadline,
                           progress=per_interval)  # fmt: skip
-    res = _classified(model, T, P, ly, tol)
+    found = _classified(model, T, P, ly, tol)
     periods = done + ly.intervals
-    msg = (f"{res.message}: {periods} periods at N={N} ({done} transient, from {start}, rtol "
-           f"{rtol:g}), {_exponent_text(res, ly, T)}"
+    q = found["period_multiple"]
+    msg = (f"{found['response']}{f' (period {q} P)' if q > 1 else ''}: {periods} periods at "
+           f"N={N} ({done} transient, from {start}, rtol {rtol:g}), largest Lyapunov exponent "
+           f"{found['lyapunov_max']:.3g} +- {found['lyapunov_spread']:.2g} 1/s (last half; "
+           f"whole run {ly.exponent / T:.3g}), section distance d(1)={found['distances'][0]:.2g}"
            + (f"; {note}" if note else "")
            + (f"; {ly.message}" if "stopped" in ly.message or "failed" in ly.message
               else ""))  # fmt: skip
-    return replace(res, periods=periods, N=N, start=start, message=msg,
-                   seconds=time.perf_counter() - t0)  # fmt: skip
+    return ResponseResult(**found, periods=periods, N=N, seconds=time.perf_counter() - t0,
+                          message=msg, start=start)  # fmt: skip
 
 
 def _atol(theta_qs: np.ndarray, rtol: float, omega: float) -> np.ndarray:
@@ -205,10 +208,9 @@ def _atol(theta_qs: np.ndarray, rtol: float, omega: float) -> np.ndarray:
                            np.full(n, 1e-3 * rtol * scale * omega)])  # fmt: skip
 
 
-def _classified(model: DiscreteElastica, T: float, P: float, ly, tol: float) -> ResponseResult:
-    """The class of a time-stepped section (`largest_lyapunov`'s result) with its Poincare
-    section in y_m, spectrum and exponent; `message` holds the class alone (response_of adds the
-    run's account); periods, N, start and seconds are response_of's to fill."""
+def _classified(model: DiscreteElastica, T: float, P: float, ly, tol: float) -> dict:
+    """What a time-stepped section (`largest_lyapunov`'s result) says: its class, Poincare
+    section in y_m, spectrum and exponent (the ResponseResult fields but the run's account)."""
     n = model.n
     sec = ly.section
     dist = section_distances(sec)
@@ -222,26 +224,15 @@ def _classified(model: DiscreteElastica, T: float, P: float, ly, tol: float) -> 
     theta_all = np.concatenate(ly.samples, axis=1) if ly.samples else theta_s
     y_all = np.atleast_1d(model.grid.midspan(theta_all[:n]))
     f, amp, peaks = _spectrum(y_all, P * T / SAMPLES)
-    return ResponseResult(
-        response=response,
-        period_multiple=q,
-        lyapunov_max=lam / T,
-        lyapunov_spread=spread / T,
-        section=np.column_stack([y_sec, yt_sec]),
-        spectrum_hz=f,
-        spectrum=amp,
-        peaks_hz=peaks,
-        periods=0,
-        N=0,
-        seconds=0.0,
-        message=f"{response}{f' (period {q} P)' if q > 1 else ''}",
-        distances=dist,
-        lyapunov_running=np.asarray(ly.running, dtype=float) / T,
-        start="",
-    )
-
-
-def _exponent_text(res: ResponseResult, ly, T: float) -> str:
-    return (f"largest Lyapunov exponent {res.lyapunov_max:.3g} +- {res.lyapunov_spread:.2g} 1/s "
-            f"(last half; whole run {ly.exponent / T:.3g}), section distance "
-            f"d(1)={res.distances[0]:.2g}")  # fmt: skip
+    return {
+        "response": response,
+        "period_multiple": q,
+        "lyapunov_max": lam / T,
+        "lyapunov_spread": spread / T,
+        "section": np.column_stack([y_sec, yt_sec]),
+        "spectrum_hz": f,
+        "spectrum": amp,
+        "peaks_hz": peaks,
+        "distances": dist,
+        "lyapunov_running": np.asarray(ly.running, dtype=float) / T,
+    }

@@ -116,8 +116,6 @@ def run_grid_lines(
     """Every boundary line of a grid in this process (one job per (E, L) column of the grid or
     per hypothesis instead of one per line: a job's start-up, ~1 s of imports, costs more than a
     small line): per beam id, its line DataFrames (column `c_max_target` names the line)."""
-    from .sweeps import scan_line
-
     out = {}
     for bid, beam in beams.items():
         lines, _ = boundary_lines(beam, spec["c_max"], spec, amplitude)
@@ -125,11 +123,22 @@ def run_grid_lines(
         for lid, ls in lines.items():
             if log:
                 log(f"{bid} {lid}")
-            df = scan_line(Beam(**beam), ls["omega0"], scan_frequencies(ls), amplitude=amplitude,
-                           effects=effects, numerics=numerics, log=log)  # fmt: skip
-            df.insert(0, "c_max_target", ls["c_max"])
-            out[bid].append(df)
+            out[bid].append(run_line(ls, scan_frequencies(ls), effects, numerics, log))
     return out
+
+
+def run_line(spec: dict[str, Any], f_ds: list[float], effects, numerics,
+             log: Callable[[str], None] | None = None):  # fmt: skip
+    """One sweep line (a spec of `lines_from_config`, `boundary_lines` or `convergence_lines`)
+    at its drive frequencies `f_ds`: a row per point, with `c_max_target` first when the line
+    belongs to a C_max."""
+    from .sweeps import scan_line
+
+    df = scan_line(Beam(**spec["beam"]), spec["omega0"], f_ds, amplitude=spec["amplitude"],
+                   effects=effects, numerics=numerics, log=log)  # fmt: skip
+    if "c_max" in spec:
+        df.insert(0, "c_max_target", spec["c_max"])
+    return df
 
 
 def grid_columns(
@@ -314,7 +323,7 @@ def run_convergence_lines(
     N and no Richardson extrapolation."""
     import pandas as pd
 
-    from .sweeps import numerics_from_config, scan_line
+    from .sweeps import numerics_from_config
 
     frames = []
     for lid, spec in lines.items():
@@ -322,9 +331,7 @@ def run_convergence_lines(
         if log:
             log(f"line {lid}: {len(f_ds)} points")
         num = numerics_from_config({**numerics, "N": spec["N"], "extrapolate": False})
-        frames.append(scan_line(Beam(**spec["beam"]), spec["omega0"], f_ds,
-                                amplitude=spec["amplitude"], effects=effects, numerics=num,
-                                log=log))  # fmt: skip
+        frames.append(run_line(spec, f_ds, effects, num, log))
     return pd.concat(frames, ignore_index=True)
 
 

@@ -133,6 +133,11 @@ class Branch:
         """Index of the first point that is not stable (None: every point is)."""
         return next((k for k, pt in enumerate(self.points) if not pt.stable), None)
 
+    def stable_start(self) -> list:
+        """The points before the first one that is not stable (all of them if every one is)."""
+        first = self.first_unstable()
+        return self.points if first is None else self.points[:first]
+
 
 def _counts(fl: FloquetResult) -> tuple[int, int]:
     """(real multipliers below -1, complex ones outside the unit circle)."""

@@ -2,28 +2,24 @@
 # ruff: noqa: F821
 # (`snakemake` is injected by Snakemake)
 
-from rotbeam.model.params import Beam, Effects
+from rotbeam.model.params import Effects
 from rotbeam.report.io import write_csv
 from rotbeam.report.joblog import job_log
-from rotbeam.simulate.studies import scan_frequencies
-from rotbeam.simulate.sweeps import numerics_from_config, scan_line
+from rotbeam.simulate.studies import run_line, scan_frequencies
+from rotbeam.simulate.sweeps import numerics_from_config
 
 with job_log(snakemake.log[0], snakemake.input, snakemake.output, snakemake.rule) as log:
     say = log.info  # one line per point of the line (scan_line's progress)
     spec = snakemake.params.spec
     f_ds = scan_frequencies(spec)
     say(f"line {snakemake.wildcards.line} of beam {snakemake.wildcards.beam}: {len(f_ds)} points")
-    df = scan_line(
-        Beam(**spec["beam"]),
-        spec["omega0"],
+    df = run_line(
+        spec,
         f_ds,
-        amplitude=spec["amplitude"],
-        effects=Effects.from_list(snakemake.params.effects),
-        numerics=numerics_from_config(snakemake.params.numerics),
+        Effects.from_list(snakemake.params.effects),
+        numerics_from_config(snakemake.params.numerics),
         log=say,
     )
-    if "c_max" in spec:
-        df.insert(0, "c_max_target", spec["c_max"])
     failed = int((~df["converged"].astype(bool)).sum())
     say(f"done: {len(df) - failed} converged, {failed} failed or unverified")
     write_csv(df, snakemake.output[0])
