@@ -9,6 +9,7 @@ from pathlib import Path
 import matplotlib
 import numpy as np
 import pandas as pd
+from matplotlib.ticker import NullFormatter
 
 from ..model.criterion import power_spectrum
 from ..model.params import Beam, Drive
@@ -214,19 +215,22 @@ def figB8_convergence(lines: pd.DataFrame, pdf: str, png: str) -> None:
     for (w0, fd), sub in lines.groupby(["omega0", "f_d"]):
         sub = sub.sort_values("N")
         ref = float(sub.loc[sub["N"] == Nmax, "rms_dynamic"].iloc[0])
-        lab = rf"$\Omega_0$={w0:g}, $f_d$={fd:g} Hz"
+        lab = rf"$\Omega_0$ = {w0:g} rad/s, $f_d$ = {fd:g} Hz"
         a.plot(sub["N"], sub["rms_dynamic"], "o-", label=lab)
         err = (sub["rms_dynamic"] / ref - 1).abs()
         b.loglog(sub["N"][sub["N"] < Nmax], err[sub["N"] < Nmax], "o-", label=lab)
     n = np.array(sorted(lines["N"].unique()))[:-1].astype(float)
     if n.size:
         b.loglog(n, 0.5 * (n / n[0]) ** -2, "k:", label=r"$N^{-2}$")
-    a.set_xlabel("N")
-    a.set_ylabel("RMS($y_m$)")
-    b.set_xlabel("N")
+    a.set_xlabel("N (grid intervals)")
+    a.set_ylabel("RMS($y_m$) / L")
+    b.set_xlabel("N (grid intervals)")
     b.set_ylabel(f"|RMS / RMS(N={Nmax}) - 1|")
+    if n.size:  # the grids' N as plain ticks (log minor labels overlap)
+        b.set_xticks(n, [f"{v:g}" for v in n])
+        b.xaxis.set_minor_formatter(NullFormatter())
     a.legend(fontsize=6)
-    b.legend(fontsize=6)
+    b.legend(fontsize=6, loc="lower left")  # below the lines: they fall from the top left
     save(fig, pdf, png)
 
 
