@@ -14,10 +14,18 @@ from rotbeam.model.elastica import DiscreteElastica
 from rotbeam.model.modes import dimensionless_frequencies
 from rotbeam.model.params import Beam, Dimensionless, Drive, Effects
 from rotbeam.solve.continuation import FirstOrderProblem, continue_branch
-from rotbeam.solve.floquet import beam_floquet, orbit_floquet
+from rotbeam.solve.floquet import (
+    FIRST_STEPS,
+    SPREAD_TOL,
+    FloquetResult,
+    beam_floquet,
+    default_steps,
+    orbit_floquet,
+)
 from rotbeam.solve.numerics import Numerics
 from rotbeam.solve.periodic import solve_periodic, solve_periodic_adaptive
-from rotbeam.solve.steady import steady_state
+from rotbeam.solve.stability import CERTIFICATE_SAFETY, monodromy_certificate
+from rotbeam.solve.steady import certified, steady_state
 
 NO_EULER = Effects(centrifugal=True, softening=True, euler=False, damping=True)
 
@@ -62,17 +70,18 @@ def test_parametrically_modulated_beam_keeps_mass_proportional_decay():
 
 @pytest.mark.slow
 def test_monodromy_against_finite_differences_of_the_period_map():
-    """Full nonlinear model below resonance (5 rad/s, 4 Hz, max |theta| 0.15): Phi at the default
+    """Full nonlinear model below resonance (5 rad/s, 4 Hz, max |theta| 0.15): Phi at the full
     2 M steps against central differences of the time-stepped one-period map (Radau, rtol 1e-8,
     eps 1e-4).  Measured: 1.4e-4 of max |Phi| (the differences' own floor is 4e-5) and |mu|max
-    to 7e-7.  N = 4 keeps the 12 perturbed runs affordable: a perturbation excites the
-    high-frequency modes, which mass-proportional damping leaves as undamped as the first."""
+    to 7e-7.  The default step count gives |mu|max as well.  N = 4 keeps the 12 perturbed runs
+    affordable: a perturbation excites the high-frequency modes, which mass-proportional
+    damping leaves as undamped as the first."""
     N = 4
     dl = Dimensionless.from_physical(Beam(), Drive(omega0=5.0, f_d=4.0), Effects())
     model = DiscreteElastica(N, dl.hub_ratio, dl.eta, dl.effects)
     res = solve_periodic_adaptive(dl, N, tail_tol=1e-6)
     assert res.converged and res.harmonic_tail < 1e-6
-    fl = beam_floquet(model, dl, res.theta, res.theta_t)
+    fl = beam_floquet(model, dl, res.theta, res.theta_t, steps=default_steps(res.M))
     n = model.n
 
     def rhs(t, z):
@@ -94,8 +103,9 @@ def test_monodromy_against_finite_differences_of_the_period_map():
     )
     rel = np.max(np.abs(fl.monodromy - fd)) / np.max(np.abs(fd))
     assert rel < 1e-3
-    mu_fd = np.linalg.eigvals(fd)
-    assert abs(fl.max_abs - np.max(np.abs(mu_fd))) < 1e-5
+    mu_fd = np.max(np.abs(np.linalg.eigvals(fd)))
+    assert abs(fl.max_abs - mu_fd) < 1e-5
+    assert abs(beam_floquet(model, dl, res.theta, res.theta_t).max_abs - mu_fd) < 1e-5
 
 
 # --- Duffing oscillator x'' + c x' + k x + b x^3 = F cos(w t) -----------------------------------
@@ -238,7 +248,8 @@ def test_beam_offset_estimate_against_a_resolved_orbit(N, omega0, f_d, Ms):
 def test_certified_orbit_is_the_time_verified_one_and_a_failed_certificate_time_steps(monkeypatch):
     """Certified by the monodromy, the steady state is the collocated orbit itself, without a
     period of time stepping: the same samples as when one period verifies it.  A certificate
-    that fails (its safety factor made impossible) hands the orbit to the time-stepped check."""
+    that fails (its safety factor made impossible) refines the orbit and hands it to the
+    time-stepped check."""
     import rotbeam.solve.stability as stability
 
     dl = Dimensionless.from_physical(Beam(), Drive(omega0=100.0, f_d=30.0), Effects())
@@ -252,4 +263,118 @@ def test_certified_orbit_is_the_time_verified_one_and_a_failed_certificate_time_
     refused = steady_state(dl, Numerics(N=12))
     assert refused.converged and refused.periods >= 1
     assert refused.message.startswith("not certified by the monodromy")
-    np.testing.assert_array_equal(refused.y_m, by_time.y_m)
+    # refined first (M -> 2M - 1 while the offset halves), then verified: the same periodic
+    # state as the M = 17 orbit's, sampled by a finer collocation (measured 1.6e-11)
+    assert refused.periodic.M > by_time.periodic.M
+    scale = np.max(np.abs(by_time.y_m))
+    assert np.max(np.abs(refused.y_m - by_time.y_m)) <= 1e-9 * scale
+
+
+# --- the step count: a first try with its own error estimate ------------------------------------
+def _beam_orbit(omega0: float, f_d: float, N: int = 12):
+    dl = Dimensionless.from_physical(Beam(), Drive(omega0=omega0, f_d=f_d), Effects())
+    model = DiscreteElastica(N, dl.hub_ratio, dl.eta, dl.effects)
+    res = solve_periodic_adaptive(dl, N, tail_tol=1e-3)
+    assert res.converged
+    return dl, model, res
+
+
+@pytest.mark.parametrize("omega0, f_d", [(5.0, 2.0), (50.0, 10.0), (100.0, 5.0)])
+def test_first_try_kept_on_calm_orbits_within_its_tolerance_of_converged(omega0, f_d):
+    """Calm orbits (below and above resonance, slow and fast rotation): the monodromy keeps its
+    first try of FIRST_STEPS steps, and its |mu|max is within SPREAD_TOL of the same rule
+    converged in the step count (16 M steps)."""
+    dl, model, res = _beam_orbit(omega0, f_d)
+    fl = beam_floquet(model, dl, res.theta, res.theta_t)
+    converged = beam_floquet(model, dl, res.theta, res.theta_t, steps=16 * res.M)
+    assert fl.steps == FIRST_STEPS < default_steps(res.M)
+    assert fl.coarse is not None and fl.coarse.steps == FIRST_STEPS // 3
+    assert abs(fl.max_abs - converged.max_abs) <= SPREAD_TOL
+    assert fl.spread <= SPREAD_TOL
+
+
+def test_resonant_orbit_takes_the_full_step_count():
+    """At resonance (5 rad/s, 7 Hz: the tip swings 0.27 L and J(t) varies fast) the first try
+    and its coarse product disagree, so the monodromy takes default_steps(M), as when the count
+    is given, to the bit."""
+    dl, model, res = _beam_orbit(5.0, 7.0)
+    fl = beam_floquet(model, dl, res.theta, res.theta_t)
+    fixed = beam_floquet(model, dl, res.theta, res.theta_t, steps=default_steps(res.M))
+    assert fl.steps == default_steps(res.M) > FIRST_STEPS
+    assert fl.coarse is None
+    np.testing.assert_array_equal(fl.monodromy, fixed.monodromy)
+    np.testing.assert_array_equal(fl.defect, fixed.defect)
+
+
+def _synthetic(defect, coarse_defect):
+    """Phi = I / 2 (so the offset is 2 x defect, closed form) with a coarse twin."""
+    Phi = 0.5 * np.eye(4)
+    mu = np.full(4, 0.5 + 0j)
+    coarse = FloquetResult(mu, Phi, 4, 0.0, defect=np.asarray(coarse_defect, dtype=float))
+    return FloquetResult(mu, Phi, 12, 0.0, defect=np.asarray(defect, dtype=float), coarse=coarse)
+
+
+@pytest.mark.parametrize(
+    "limit, certified, ambiguous", [(3.5e-6, True, False), (2.5e-6, False, True),
+                                    (1.5e-6, False, False)]
+)  # fmt: skip
+def test_certificate_adds_the_coarse_spread(limit, certified, ambiguous):
+    """Offset (I - Phi)^-1 defect = 2e-6, the coarse one 3e-6: certified only when offset plus
+    spread (3e-6) is below the limit; with the limit between offset and sum it is ambiguous."""
+    fl = _synthetic([1e-6, 0, 0, 0], [1.5e-6, 0, 0, 0])
+    cert = monodromy_certificate(fl, np.ones((2, 3)), limit * CERTIFICATE_SAFETY, 1.0)
+    assert cert.offset == pytest.approx(2e-6, rel=1e-12)
+    assert cert.spread == pytest.approx(1e-6, rel=1e-12)
+    assert (cert.certified, cert.ambiguous) == (certified, ambiguous)
+
+
+def test_ambiguous_certificate_is_decided_with_the_full_step_count(monkeypatch):
+    """A limit put between the first try's offset and offset + spread: `certified` computes the
+    monodromy again with default_steps(M), whose offset (no spread) is inside the limit, and
+    accepts the orbit with that monodromy (the first try alone would have refused it)."""
+    import rotbeam.solve.stability as stability
+
+    dl, model, res = _beam_orbit(50.0, 10.0)
+    fl = beam_floquet(model, dl, res.theta, res.theta_t)
+    wref = max(dl.omega, 1.0)
+    first = monodromy_certificate(fl, res.theta, 1.0, wref)
+    assert fl.steps == FIRST_STEPS and first.spread > 0.0
+    ss_tol = 1e-3
+    safety = ss_tol / (first.offset + first.spread / 2)  # limit inside the spread
+    monkeypatch.setattr(stability, "CERTIFICATE_SAFETY", safety)
+    assert monodromy_certificate(fl, res.theta, ss_tol, wref).ambiguous
+    state, _ = certified(model, dl, Numerics(N=12, ss_tol=ss_tol), res, fl, 0.0)
+    full = beam_floquet(model, dl, res.theta, res.theta_t, steps=default_steps(res.M))
+    assert monodromy_certificate(full, res.theta, ss_tol, wref).certified
+    assert state is not None and state.floquet.steps == default_steps(res.M)
+
+
+def test_failed_certificate_refines_the_orbit_before_time_stepping(monkeypatch):
+    """A limit put between the offsets of the first collocated orbit and of the next finer one
+    (M -> 2M - 1): the steady state is the finer orbit, certified, with no period of time
+    stepping, and its midspan RMS is the time-verified one's (tight ss_tol) to 1e-6."""
+    import rotbeam.solve.stability as stability
+
+    dl = Dimensionless.from_physical(Beam(), Drive(omega0=10.0, f_d=7.0), Effects())
+    num = Numerics(N=12)
+    model = DiscreteElastica(num.N, dl.hub_ratio, dl.eta, dl.effects)
+    wref = max(dl.omega, 1.0)
+    coarse = solve_periodic_adaptive(dl, num.N, tail_tol=num.tail_tol)
+    M = 2 * coarse.M - 1
+    finer = solve_periodic(dl, num.N, M)
+    offsets = [
+        monodromy_certificate(
+            beam_floquet(model, dl, r.theta, r.theta_t), r.theta, 1.0, wref
+        ).offset
+        for r in (coarse, finer)
+    ]
+    assert offsets[1] < offsets[0] / 10  # the finer orbit's defect is far smaller
+    limit = math.sqrt(offsets[0] * offsets[1])
+    monkeypatch.setattr(stability, "CERTIFICATE_SAFETY", num.ss_tol / limit)
+    state = steady_state(dl, num)
+    assert state.converged and state.periods == 0 and state.periodic.M == M
+    assert "certified by the monodromy" in state.message
+    monkeypatch.undo()
+    verified = steady_state(dl, Numerics(N=12, certify="time", ss_tol=1e-7))
+    rms = [float(np.sqrt(np.mean(s.y_m**2))) for s in (state, verified)]
+    assert rms[0] == pytest.approx(rms[1], rel=1e-6)

@@ -12,13 +12,21 @@ the collocation instants taken from its trigonometric interpolant.  The fast ben
 propagated exactly by the exponential of their frozen part, so the error is O(h^2) uniformly in
 the stiffness (Hochbruck & Lubich, SIAM J. Numer. Anal. 41 (2003) 945).  The fourth-order
 Magnus step with its commutator term h^2 [J_2, J_1] overflows here: the commutator carries the
-stiffness (measured: |mu| = 7.5 for a stable orbit at S = 17).  S = 2 M by default (M the
-collocation instants): at four benchmark scenes |mu|max is converged in S to 1e-6 or better; at
-the resonant Omega_0 = 5 rad/s, 7 Hz it is 6e-5 below its S = 16M value (docs/stability.md).
+stiffness (measured: |mu| = 7.5 for a stable orbit at S = 17).
+
+The step count.  The first try takes FIRST_STEPS = 12 steps; every third of its exponentials,
+cubed, is the step of the same rule on 4 steps (its midpoint is theirs), so a coarse monodromy
+comes with two matrix products a step and no new exponential.  The first try stands when the
+two agree (`first_try_stands`: |mu|max to SPREAD_TOL, the fixed-point offset to 1 %); else the
+full S = 2 M steps (M the collocation instants, at least 32) are taken.  Calm orbits, most of a
+sweep, need no more than 12 steps: their J(t) varies slowly over the period.  Measured at the
+benchmark scenes and on a Fig. 7 grid column (docs/stability.md, `python3 -m
+rotbeam.bench.floquet_steps`): a kept first try is within 3e-6 of |mu|max converged in S, the
+full count within 1e-4 (6e-5 at the resonant Omega_0 = 5 rad/s, 7 Hz, which takes it).
 Why not Hill's method: the Floquet exponents would be eigenvalues of the (M n)-sized
 collocation pencil (2535 unknowns at N = 40, M = 65), a dense eigenproblem of 5070 with
 spurious exponents to sort out; why not solve_ivp of the matrix ODE: (2n)^2 = 6084 unknowns in
-an implicit stepper.  Here the cost is S Jacobians and S 78 x 78 matrix exponentials.
+an implicit stepper.  Here the cost is S Jacobians and S 79 x 79 matrix exponentials.
 
 The defect.  Given the right-hand side too, the same pass measures how far the orbit is from a
 true periodic solution (the certificate of `rotbeam.solve.stability.monodromy_certificate`).  Let
@@ -48,6 +56,16 @@ from ..model.params import Dimensionless
 #: accurate to ~1e-6 here (tests), far below the margins the verdicts rest on
 STABLE_MARGIN = 1e-6
 
+#: the monodromy's first try (a multiple of 3): enough for an orbit whose Jacobian varies slowly
+#: over the period, the common case (docs/stability.md)
+FIRST_STEPS = 12
+
+#: the first try stands when its |mu|max and the coarse product's differ by at most this ...
+SPREAD_TOL = 1e-5
+#: ... and their fixed-point offsets by this much of the offset or of the orbit's size
+OFFSET_RTOL = 1e-2
+OFFSET_ATOL = 1e-8
+
 
 @dataclass
 class FloquetResult:
@@ -59,6 +77,14 @@ class FloquetResult:
     seconds: float
     method: str = "exponential midpoint (Magnus-2) product of matrix exponentials"
     defect: np.ndarray | None = None  #: one-period map minus identity at the orbit's start
+    #: the same rule on a third of the steps (every third step's exponential cubed), whose
+    #: distance from this one estimates its error; None when the steps were fixed or full
+    coarse: FloquetResult | None = None
+
+    @property
+    def spread(self) -> float:
+        """| |mu|max - coarse |mu|max |: an error estimate (0 without a coarse product)."""
+        return abs(self.max_abs - self.coarse.max_abs) if self.coarse is not None else 0.0
 
     def fixed_point_offset(self) -> np.ndarray | None:
         """w with (I - Phi) w = defect: how far the orbit's start is from the true periodic
@@ -113,18 +139,36 @@ def propagator(jacobians, h: float) -> np.ndarray:
 def propagator_with_defect(steps_data, h: float) -> tuple[np.ndarray, np.ndarray]:
     """(Phi, e(P)) of e' = J(t) e - r(t), e(0) = 0, over the steps whose midpoint (J, r) are
     given, each of size h: exponentials of the augmented matrix [[h J, -h r], [0, 0]]."""
-    Phi = e = None
+    Phi, e = _product(_step_exponentials(steps_data, h))
+    return Phi, e
+
+
+def _step_exponentials(steps_data, h: float) -> np.ndarray:
+    """exp of each step's augmented matrix [[h J, -h r], [0, 0]], (S, dim + 1, dim + 1)."""
+    out = []
     for J, r in steps_data:
         dim = J.shape[0]
         A = np.zeros((dim + 1, dim + 1))
         A[:dim, :dim] = h * J
         A[:dim, dim] = -h * r
-        E = sla.expm(A)
-        if Phi is None:
-            Phi, e = E[:dim, :dim], E[:dim, dim].copy()
-        else:
-            Phi, e = E[:dim, :dim] @ Phi, E[:dim, :dim] @ e + E[:dim, dim]
+        out.append(sla.expm(A))
+    return np.array(out)
+
+
+def _product(E: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(Phi, e(P)) from the steps' augmented exponentials, the first step first."""
+    dim = E.shape[1] - 1
+    Phi, e = E[0, :dim, :dim], E[0, :dim, dim].copy()
+    for Ek in E[1:]:
+        Phi, e = Ek[:dim, :dim] @ Phi, Ek[:dim, :dim] @ e + Ek[:dim, dim]
     return Phi, e
+
+
+def _coarse_product(E: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(Phi, e(P)) of the rule on a third of the steps: step k of 3h has its midpoint at the
+    midpoint of fine step 3k + 1, so its exponential is that step's cubed (two products, no
+    new exponential)."""
+    return _product(np.array([Ek @ Ek @ Ek for Ek in E[1::3]]))
 
 
 def multipliers_of(
@@ -149,6 +193,53 @@ def trig_eval(X: np.ndarray, period: float, t: np.ndarray, derivative: int = 0) 
     return np.real(np.tensordot(E, C, axes=(1, 0)))
 
 
+def first_try_stands(first: FloquetResult, size: float) -> bool:
+    """Whether the first try's |mu|max and fixed-point offset are as good as the full step
+    count's: |mu|max within SPREAD_TOL of the coarse product's and within a tenth of its distance
+    from 1 (the spread cannot move the stability verdict), and the offset (I - Phi)^-1 defect
+    within OFFSET_RTOL of the coarse one's or OFFSET_ATOL of the orbit's size (the certificate
+    compares it with 1e-4 of the response).  The entries of Phi may still be off by more: a
+    stiff mode's phase over the period moves them and not |mu| (tests/test_floquet.py)."""
+    if first.spread > min(SPREAD_TOL, 0.1 * abs(1.0 - first.max_abs)):
+        return False
+    w, w_coarse = first.fixed_point_offset(), first.coarse.fixed_point_offset()
+    if w is None or w_coarse is None:
+        return first.defect is None
+    gap = float(np.max(np.abs(w - w_coarse)))
+    return gap <= OFFSET_RTOL * float(np.max(np.abs(w))) + OFFSET_ATOL * size
+
+
+def default_steps(M: int) -> int:
+    """The full step count: 2 M (at least 32), M the orbit's collocation instants."""
+    return max(2 * M, 32)
+
+
+def _steps_data(jac, Z, period, steps, rhs, rows) -> tuple[np.ndarray, np.ndarray, bool]:
+    """(J (S, dim, dim), r (S, dim), has_defect) at the midpoints of `steps` equal steps: the
+    Jacobian and the interpolant's residual (zero without a right-hand side)."""
+    t = (np.arange(steps) + 0.5) * (period / steps)
+    Zs = trig_eval(Z, period, t)
+    if rows is not None:
+        F, Js = rows(t, Zs)
+        return Js, trig_eval(Z, period, t, derivative=1) - F, True
+    Js = np.array([jac(tk, zk) for tk, zk in zip(t, Zs, strict=True)])
+    if rhs is None:
+        return Js, np.zeros(Zs.shape), False
+    F = np.array([rhs(tk, zk) for tk, zk in zip(t, Zs, strict=True)])
+    return Js, trig_eval(Z, period, t, derivative=1) - F, True
+
+
+def _monodromy(jac, Z, period, steps, rhs, rows, coarse: bool):
+    """(Phi, defect, coarse (Phi, defect) or None) over `steps` steps."""
+    Js, r, has_defect = _steps_data(jac, Z, period, steps, rhs, rows)
+    E = _step_exponentials(zip(Js, r, strict=True), period / steps)
+    Phi, defect = _product(E)
+    low = _coarse_product(E) if coarse else None
+    if not has_defect:
+        defect, low = None, (low[0], None) if low is not None else None
+    return Phi, defect, low
+
+
 def orbit_floquet(
     jac: Callable[[float, np.ndarray], np.ndarray] | None,
     Z: np.ndarray,
@@ -159,29 +250,28 @@ def orbit_floquet(
 ) -> FloquetResult:
     """Multipliers of the orbit whose states at M equispaced instants are Z (M, dim), for the
     system with Jacobian jac(t, z); the orbit between the instants is Z's trigonometric
-    interpolant.  `steps` defaults to 2 M (at least 32).  With the right-hand side rhs(t, z)
-    the result also carries the interpolant's one-period `defect` (module docstring).
-    `rows(t, Z)` -> (f (S, dim), J (S, dim, dim)) gives both at every step at once instead of
-    jac and rhs (the beam's batched `first_order_rows`)."""
+    interpolant.  With the right-hand side rhs(t, z) the result also carries the interpolant's
+    one-period `defect` (module docstring).  `rows(t, Z)` -> (f (S, dim), J (S, dim, dim))
+    gives both at every step at once instead of jac and rhs (the beam's batched
+    `first_order_rows`).
+
+    `steps` fixes the step count.  Without it the monodromy first tries FIRST_STEPS steps and
+    keeps them when the coarse product (a third of the steps, from the same exponentials) agrees
+    with it (`first_try_stands`); otherwise it takes `default_steps(M)`."""
     t0 = time.perf_counter()
-    steps = steps or max(2 * Z.shape[0], 32)
-    h = period / steps
-    t = (np.arange(steps) + 0.5) * h
-    Zs = trig_eval(Z, period, t)
-    if rows is not None:
-        F, Js = rows(t, Zs)
-        data = zip(Js, trig_eval(Z, period, t, derivative=1) - F, strict=True)
-        Phi, defect = propagator_with_defect(data, h)
+    if steps is not None:
+        Phi, defect, _ = _monodromy(jac, Z, period, steps, rhs, rows, coarse=False)
         return multipliers_of(Phi, steps, time.perf_counter() - t0, defect)
-    if rhs is None:
-        Phi = propagator((jac(tk, zk) for tk, zk in zip(t, Zs, strict=True)), h)
-        return multipliers_of(Phi, steps, time.perf_counter() - t0)
-    dZ = trig_eval(Z, period, t, derivative=1)
-    data = (
-        (jac(tk, zk), dzk - rhs(tk, zk)) for tk, zk, dzk in zip(t, Zs, dZ, strict=True)
-    )  # fmt: skip
-    Phi, defect = propagator_with_defect(data, h)
-    return multipliers_of(Phi, steps, time.perf_counter() - t0, defect)
+    full = default_steps(Z.shape[0])
+    if full > FIRST_STEPS:
+        Phi, defect, low = _monodromy(jac, Z, period, FIRST_STEPS, rhs, rows, coarse=True)
+        first = multipliers_of(Phi, FIRST_STEPS, 0.0, defect)
+        first.coarse = multipliers_of(*low[:1], FIRST_STEPS // 3, 0.0, low[1])
+        if first_try_stands(first, float(np.max(np.abs(Z)))):
+            first.seconds = time.perf_counter() - t0
+            return first
+    Phi, defect, _ = _monodromy(jac, Z, period, full, rhs, rows, coarse=False)
+    return multipliers_of(Phi, full, time.perf_counter() - t0, defect)
 
 
 def beam_floquet(

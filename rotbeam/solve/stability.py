@@ -37,12 +37,16 @@ STATUS_UNSTABLE = 2
 
 
 def orbit_stability(
-    model: DiscreteElastica, dl: Dimensionless, periodic: PeriodicResult | None
+    model: DiscreteElastica,
+    dl: Dimensionless,
+    periodic: PeriodicResult | None,
+    steps: int | None = None,
 ) -> FloquetResult | None:
-    """Multipliers of the collocated orbit, None when there is no converged one."""
+    """Multipliers of the collocated orbit, None when there is no converged one (`steps` as in
+    `rotbeam.solve.floquet.orbit_floquet`)."""
     if periodic is None or not periodic.converged:
         return None
-    return beam_floquet(model, dl, periodic.theta, periodic.theta_t)
+    return beam_floquet(model, dl, periodic.theta, periodic.theta_t, steps)
 
 
 def leave_orbit(z: np.ndarray, fl: FloquetResult, size: float) -> np.ndarray:
@@ -72,10 +76,25 @@ class Certificate:
     offset: float  #: estimated distance to the true periodic state, relative to the response
     limit: float  #: what it had to be below: ss_tol / CERTIFICATE_SAFETY
     certified: bool
+    #: how far the coarse monodromy's estimate lies from it (0 without one): the certificate
+    #: asks offset + spread to be below the limit
+    spread: float = 0.0
+
+    @property
+    def ambiguous(self) -> bool:
+        """Below the limit, but not with the spread added: more Floquet steps decide."""
+        return not self.certified and self.offset <= self.limit
 
     def describe(self) -> str:
         verdict = "<=" if self.certified else ">"
-        return f"monodromy offset estimate {self.offset:.2g} {verdict} {self.limit:.2g}"
+        spread = f" + {self.spread:.2g}" if self.spread else ""
+        return f"monodromy offset estimate {self.offset:.2g}{spread} {verdict} {self.limit:.2g}"
+
+
+def _relative(w: np.ndarray, size: float, wref: float) -> float:
+    """max-norm of a state offset (angles; velocities divided by wref) relative to size."""
+    n = w.size // 2
+    return max(float(np.max(np.abs(w[:n]))), float(np.max(np.abs(w[n:]))) / wref) / size
 
 
 def monodromy_certificate(
@@ -87,15 +106,19 @@ def monodromy_certificate(
     The fixed point of the period map is the orbit's start plus w, (I - Phi) w = defect (first
     order).  |w| (max-norm, velocities divided by `wref`, as the time-stepped transient bound)
     relative to max |Theta| must be below ss_tol / CERTIFICATE_SAFETY: the same quantity the
-    verification period bounds by d rho / (1 - rho), with the margin of an estimate."""
+    verification period bounds by d rho / (1 - rho), with the margin of an estimate.  With a
+    coarse monodromy beside it, the distance between the two estimates is added."""
     w = fl.fixed_point_offset() if fl is not None else None
     if w is None or not np.all(np.isfinite(w)):
         return None
-    n = w.size // 2
     size = max(float(np.max(np.abs(theta))), 1e-300)
-    offset = max(float(np.max(np.abs(w[:n]))), float(np.max(np.abs(w[n:]))) / wref) / size
+    offset = _relative(w, size, wref)
+    w_coarse = fl.coarse.fixed_point_offset() if fl.coarse is not None else None
+    spread = 0.0
+    if w_coarse is not None:
+        spread = _relative(w - w_coarse, size, wref) if np.all(np.isfinite(w_coarse)) else np.inf
     limit = ss_tol / CERTIFICATE_SAFETY
-    return Certificate(offset, limit, offset <= limit)
+    return Certificate(offset, limit, offset + spread <= limit, spread)
 
 
 def stability_note(fl: FloquetResult | None) -> str:

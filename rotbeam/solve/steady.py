@@ -24,12 +24,14 @@ An attracting orbit can skip the verification period (numerics.certify = "monodr
 default): the same pass that gives its multipliers gives its one-period defect, and the
 distance to the true periodic state, (I - Phi)^-1 defect, is compared with ss_tol
 (`rotbeam.solve.stability.monodromy_certificate`); the message says which certificate was used.
+An orbit whose offset is too large is first refined (M -> 2M - 1, up to 129 instants) and
+certified again; time stepping verifies what the finest orbit cannot certify.
 Without damping no steady state is reached: we say so and return the last periods seen.
 
-`steady_state` runs these as named steps: `initial_state`, `certified` (the monodromy
-certificate), `tolerances` (rtol, the first-period check tolerance, the absolute scale), `march`
-(period by period with a `PeriodStepper`, which holds the wall-time deadline and counts
-evaluations) and `rms_window`.
+`steady_state` runs these as named steps: `initial_state`, `certified_or_refined` (the monodromy
+certificate, on finer orbits while it fails), `tolerances` (rtol, the first-period check
+tolerance, the absolute scale), `march` (period by period with a `PeriodStepper`, which holds
+the wall-time deadline and counts evaluations) and `rms_window`.
 """
 
 from __future__ import annotations
@@ -40,15 +42,14 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy.integrate import solve_ivp
 
 from ..model.elastica import DiscreteElastica
 from ..model.modes import dimensionless_frequencies, linear_forced_response
 from ..model.params import Dimensionless
 from ..model.quasistatic import quasistatic_series
-from .floquet import FloquetResult
+from .floquet import FloquetResult, default_steps
 from .numerics import Numerics
-from .periodic import PeriodicResult, solve_periodic_adaptive
+from .periodic import PeriodicResult, solve_periodic, solve_periodic_adaptive
 from .spectral import trig_interpolate
 from .stability import (
     STATUS_UNSTABLE,
@@ -207,6 +208,9 @@ def certified(
     if num.certify != "monodromy" or periodic.harmonic_tail > num.tail_tol:
         return None, ""
     cert = monodromy_certificate(fl, periodic.theta, num.ss_tol, max(dl.omega, 1.0))
+    if cert is not None and cert.ambiguous:  # the first try's steps cannot tell: all of them
+        fl = orbit_stability(model, dl, periodic, steps=default_steps(periodic.M))
+        cert = monodromy_certificate(fl, periodic.theta, num.ss_tol, max(dl.omega, 1.0))
     if cert is None:
         return None, ""
     if not cert.certified:
@@ -317,6 +321,9 @@ class PeriodStepper:
 
     def periods(self, k: int, count: int, z: np.ndarray, t_eval: np.ndarray, rtol: float):
         """solve_ivp from tau = k P over `count` periods; None when the wall-time budget ran out."""
+        # imported here: a job whose orbits are all certified never steps (0.2 s of start-up)
+        from scipy.integrate import solve_ivp
+
         P = self.dl.period
         try:
             sol = solve_ivp(
@@ -479,6 +486,48 @@ def rms_window(
     return Window(taus, sol.y[:n], 0, run.message, k + p)
 
 
+#: the finest collocation `certified_or_refined` goes to (solve_periodic_adaptive's M_max)
+REFINE_M_MAX = 129
+
+
+def certified_or_refined(
+    model: DiscreteElastica,
+    dl: Dimensionless,
+    num: Numerics,
+    periodic: PeriodicResult,
+    fl: FloquetResult | None,
+    t0: float,
+) -> tuple[SteadyState | None, str, PeriodicResult, FloquetResult | None]:
+    """`certified`, with the collocation refined (M -> 2M - 1, up to REFINE_M_MAX, from the
+    coarser orbit's interpolant) while the certificate fails on its offset estimate: the offset
+    falls with the interpolant's defect, and a finer orbit costs less than the periods of time
+    stepping that would verify the coarse one (docs/stability.md); it stops where the offset
+    does not halve.  Returns (the state or None,
+    why not, the last orbit, its multipliers)."""
+    state, why_not = certified(model, dl, num, periodic, fl, t0)
+    offset = _offset(fl, periodic, num, dl)
+    while state is None and why_not and 2 * periodic.M - 1 <= REFINE_M_MAX:
+        M = 2 * periodic.M - 1
+        finer = solve_periodic(dl, model.grid.N, M, guess=trig_interpolate(periodic.theta.T, M))
+        finer_fl = orbit_stability(model, dl, finer)
+        if finer_fl is None or not finer_fl.stable:
+            break
+        periodic, fl = finer, finer_fl
+        state, why_not = certified(model, dl, num, periodic, fl, t0)
+        offset, previous = _offset(fl, periodic, num, dl), offset
+        if not offset <= previous / 2:  # the defect does not fall with M: time stepping decides
+            break
+    return state, why_not, periodic, fl
+
+
+def _offset(
+    fl: FloquetResult | None, periodic: PeriodicResult, num: Numerics, dl: Dimensionless
+) -> float:
+    """The certificate's offset estimate of an orbit (inf without one)."""
+    cert = monodromy_certificate(fl, periodic.theta, num.ss_tol, max(dl.omega, 1.0))
+    return cert.offset if cert is not None else math.inf
+
+
 def steady_state(
     dl: Dimensionless,
     numerics: Numerics | None = None,
@@ -514,9 +563,12 @@ def steady_state(
     from_orbit = periodic is not None and periodic.converged and not unstable_orbit
     why_not = ""
     if from_orbit:
-        state, why_not = certified(model, dl, num, periodic, orbit_fl, t0)
+        state, why_not, periodic, orbit_fl = certified_or_refined(
+            model, dl, num, periodic, orbit_fl, t0
+        )
         if state is not None:
             return state
+        z = np.concatenate([periodic.theta[:, 0], periodic.theta_t[:, 0]])
     tol = tolerances(model, dl, num, z, response_scale, periodic, from_orbit)
     if unstable_orbit:
         z = leave_orbit(z, orbit_fl, tol.scale)
