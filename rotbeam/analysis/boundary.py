@@ -10,7 +10,6 @@ from collections.abc import Iterable, Mapping
 
 import numpy as np
 import pandas as pd
-from scipy.optimize import curve_fit
 
 from ..config.checks import check_threshold
 from ..model.criterion import critical_from_scan
@@ -98,6 +97,8 @@ def fit_c(table: pd.DataFrame, column: str = "f_d_root") -> dict:
     if f0.size < 2:
         out.update(c=math.nan, c_stderr=math.nan, message="fewer than 2 lines with a crossing")
         return out
+    from scipy.optimize import curve_fit  # imported here: most boundary jobs fit nothing
+
     popt, pcov = curve_fit(lambda x, c: c * x, f0, fd, p0=[0.35])
     out.update(c=float(popt[0]), c_stderr=float(np.sqrt(pcov[0, 0])), message="curve_fit")
     return out

@@ -15,7 +15,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.integrate import solve_bvp
 
 from ..config.errors import RotbeamInputError
 from .elastica import DiscreteElastica
@@ -259,6 +258,8 @@ def solve_static_bvp(
         u0 = np.zeros((6, nodes))
         u0[2] = s
         u0[4] = lam2 * (r_o * (1 - s) + (1 - s**2) / 2)
+    from scipy.integrate import solve_bvp  # imported here: the sweeps never need it
+
     sol = solve_bvp(f, bc, s, u0, tol=tol, max_nodes=100000)
     u = sol.sol(s)
     out = BVPSolution(
