@@ -126,23 +126,6 @@ class FloquetResult:
         return {"floquet_max": self.max_abs, "stable": self.stable}
 
 
-def propagator(jacobians, h: float) -> np.ndarray:
-    """Fundamental matrix of y' = J(t) y over the steps whose midpoint Jacobians are given
-    (an iterable of (dim, dim) arrays), each of size h (exponential midpoint rule)."""
-    Phi = None
-    for J in jacobians:
-        E = sla.expm(h * J)
-        Phi = E if Phi is None else E @ Phi
-    return Phi
-
-
-def propagator_with_defect(steps_data, h: float) -> tuple[np.ndarray, np.ndarray]:
-    """(Phi, e(P)) of e' = J(t) e - r(t), e(0) = 0, over the steps whose midpoint (J, r) are
-    given, each of size h: exponentials of the augmented matrix [[h J, -h r], [0, 0]]."""
-    Phi, e = _product(_step_exponentials(steps_data, h))
-    return Phi, e
-
-
 def _step_exponentials(steps_data, h: float) -> np.ndarray:
     """exp of each step's augmented matrix [[h J, -h r], [0, 0]], (S, dim + 1, dim + 1)."""
     out = []
@@ -235,8 +218,9 @@ def _monodromy(jac, Z, period, steps, rhs, rows, coarse: bool):
     E = _step_exponentials(zip(Js, r, strict=True), period / steps)
     Phi, defect = _product(E)
     low = _coarse_product(E) if coarse else None
-    if not has_defect:
-        defect, low = None, (low[0], None) if low is not None else None
+    if not has_defect:  # the residual column was zero: no defect to report
+        defect = None
+        low = (low[0], None) if low is not None else None
     return Phi, defect, low
 
 
@@ -262,14 +246,13 @@ def orbit_floquet(
     if steps is not None:
         Phi, defect, _ = _monodromy(jac, Z, period, steps, rhs, rows, coarse=False)
         return multipliers_of(Phi, steps, time.perf_counter() - t0, defect)
+    Phi, defect, low = _monodromy(jac, Z, period, FIRST_STEPS, rhs, rows, coarse=True)
+    first = multipliers_of(Phi, FIRST_STEPS, 0.0, defect)
+    first.coarse = multipliers_of(low[0], FIRST_STEPS // 3, 0.0, low[1])
+    if first_try_stands(first, float(np.max(np.abs(Z)))):
+        first.seconds = time.perf_counter() - t0
+        return first
     full = default_steps(Z.shape[0])
-    if full > FIRST_STEPS:
-        Phi, defect, low = _monodromy(jac, Z, period, FIRST_STEPS, rhs, rows, coarse=True)
-        first = multipliers_of(Phi, FIRST_STEPS, 0.0, defect)
-        first.coarse = multipliers_of(*low[:1], FIRST_STEPS // 3, 0.0, low[1])
-        if first_try_stands(first, float(np.max(np.abs(Z)))):
-            first.seconds = time.perf_counter() - t0
-            return first
     Phi, defect, _ = _monodromy(jac, Z, period, full, rhs, rows, coarse=False)
     return multipliers_of(Phi, full, time.perf_counter() - t0, defect)
 

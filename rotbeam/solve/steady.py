@@ -117,6 +117,22 @@ def initial_state(
     return np.concatenate([th[:, 1], (th[:, 2] - th[:, 0]) / (2 * h)]), None
 
 
+def starting_state(
+    model: DiscreteElastica,
+    dl: Dimensionless,
+    num: Numerics,
+    guess: np.ndarray | None,
+    state0: np.ndarray | None,
+) -> tuple[np.ndarray, PeriodicResult | None]:
+    """`state0` (Theta, Theta_t) when given, else `initial_state` from numerics.start."""
+    if state0 is None:
+        return initial_state(model, dl, num.start, num.tail_tol, guess)
+    z = np.array(state0, dtype=float)
+    if z.shape != (2 * model.n,):
+        raise ValueError(f"state0 must have shape ({2 * model.n},), got {z.shape}")
+    return z, None
+
+
 def slowest_decay_rate(model: DiscreteElastica, dl: Dimensionless) -> float:
     """Slowest decay rate of the linearised transient, per unit tau.
 
@@ -538,24 +554,19 @@ def steady_state(
 ) -> SteadyState:
     """Integrate from `numerics.start` until the periodic steady state, then sample it.
 
-    The steps: the initial state (`initial_state`), the stepper's tolerances (`tolerances`), the
-    march period by period to the steady state (`march`, with a `PeriodStepper`), the RMS window
-    (`rms_window`).  With numerics.integrate = False (and start = "periodic") the collocation
-    result is returned as it is: fastest, but not checked by time stepping.  `guess` (M, N-1)
-    seeds the collocation (continuation along a sweep).  `state0` (Theta, Theta_t) at tau = 0,
-    if given, is the initial state instead of `numerics.start` (no collocation: time stepping
-    from where the beam is, e.g. the previous drive frequency's final `state` in a sweep that
-    shows hysteresis).
+    The steps: the initial state (`starting_state`), the certificate of a collocated orbit
+    (`certified_or_refined`), the stepper's tolerances (`tolerances`), the march period by
+    period to the steady state (`march`, with a `PeriodStepper`), the RMS window (`rms_window`).
+    With numerics.integrate = False (and start = "periodic") the collocation result is returned
+    as it is: fastest, but not checked by time stepping.  `guess` (M, N-1) seeds the collocation
+    (continuation along a sweep).  `state0` (Theta, Theta_t) at tau = 0, if given, is the initial
+    state instead of `numerics.start` (no collocation: time stepping from where the beam is, e.g.
+    the previous drive frequency's final `state` in a sweep that shows hysteresis).
     """
     num = numerics if numerics is not None else Numerics()
     t0 = time.perf_counter()
     model = DiscreteElastica.from_dimensionless(dl, num.N)
-    if state0 is not None:
-        z, periodic = np.array(state0, dtype=float), None
-        if z.shape != (2 * model.n,):
-            raise ValueError(f"state0 must have shape ({2 * model.n},), got {z.shape}")
-    else:
-        z, periodic = initial_state(model, dl, num.start, num.tail_tol, guess)
+    z, periodic = starting_state(model, dl, num, guess, state0)
     if not num.integrate and periodic is not None:
         return _from_collocation(model, dl, num, periodic, t0)
     orbit_fl = orbit_stability(model, dl, periodic)  # an unstable orbit is left, not verified
