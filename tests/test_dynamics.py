@@ -108,23 +108,31 @@ def test_verified_orbit_is_reported_from_the_collocation():
 
 
 @pytest.mark.slow
-def test_verification_rejects_an_inaccurate_orbit():
+def test_verification_rejects_an_inaccurate_orbit(monkeypatch):
     """Near resonance (7 Hz) a collocation allowed a coarse harmonic tail (M = 17: 0.14 % off in
-    RMS) fails the monodromy certificate and the one-period check at ss_tol 1e-5; the run goes on
-    time stepping at the tight tolerance and lands on the time-stepped steady state, not on the
-    collocation."""
+    RMS) fails the monodromy certificate at ss_tol 1e-5.  The run refines the orbit (M -> 2M - 1)
+    until the certificate passes and lands on the resolved steady state, not on the coarse
+    collocation; with no refinement allowed, the orbit fails the one-period check too and time
+    stepping at the tight tolerance reaches the same state."""
+    import rotbeam.solve.steady as steady
+
     dl = dl_of(5.0, 7.0)
     coarse = steady_state(dl, Numerics(N=20, integrate=False, tail_tol=0.05))
     assert coarse.periodic.M == 17
-    checked = steady_state(dl, Numerics(N=20, tail_tol=0.05, ss_tol=1e-5, rtol=1e-7))
+    num = Numerics(N=20, tail_tol=0.05, ss_tol=1e-5, rtol=1e-7)
+    refined = steady_state(dl, num)
+    assert refined.converged and refined.periods == 0 and refined.periodic.M > 17
+    assert "certified by the monodromy" in refined.message
+    monkeypatch.setattr(steady, "REFINE_M_MAX", 17)
+    checked = steady_state(dl, num)
     assert checked.converged and checked.periods > 1 and "verified" not in checked.message
     assert checked.message.startswith("not certified by the monodromy")  # nor by its monodromy
     ref = steady_state(dl, Numerics(N=20, tail_tol=1e-8, integrate=False))
     assert ref.periodic.harmonic_tail < 1e-6
     err_coarse = abs(rms(coarse.y_m) - rms(ref.y_m)) / rms(ref.y_m)
-    err_checked = abs(rms(checked.y_m) - rms(ref.y_m)) / rms(ref.y_m)
-    assert err_coarse > 5e-4  # the check had something to catch
-    assert err_checked < 1e-4
+    assert err_coarse > 5e-4  # the certificate had something to catch
+    for state in (refined, checked):
+        assert abs(rms(state.y_m) - rms(ref.y_m)) / rms(ref.y_m) < 1e-4
 
 
 def test_no_coarse_run_when_the_fine_grid_has_no_steady_state():
