@@ -148,25 +148,3 @@ def test_no_coarse_run_when_the_fine_grid_has_no_steady_state():
         "extrapolated": False,
         "note": "not extrapolated: no steady state at N = 6 (N = 3 not run)",
     }
-
-
-def test_a_guess_starts_the_collocation_at_the_instants_its_spectrum_needs():
-    """Continuation along a sweep: a point after a resonance inherits an orbit solved at the
-    resonant M.  The calm orbit (5 rad/s, 15 Hz, N = 12) solved at M = 65, handed on as the
-    guess, is resampled to the instants its spectrum needs: the warm start solves at the cold
-    start's M = 17 and lands on the cold start's orbit (Newton's tolerance).  The resonant orbit
-    (7 Hz), whose spectrum is rich, keeps its M."""
-    tail_tol = 1e-3
-    calm = dl_of(5.0, 15.0)
-    cold = solve_periodic_adaptive(calm, 12, tail_tol=tail_tol)
-    at_65 = solve_periodic(calm, 12, 65)
-    assert cold.converged and at_65.converged and cold.M == 17
-    warm = solve_periodic_adaptive(calm, 12, tail_tol=tail_tol, guess=at_65.theta.T)
-    assert warm.converged and warm.M == cold.M
-    scale = np.max(np.abs(cold.theta))
-    assert np.max(np.abs(warm.theta - cold.theta)) <= 1e-8 * scale
-    resonant = solve_periodic_adaptive(dl_of(5.0, 7.0), 12, tail_tol=tail_tol)
-    assert resonant.converged and resonant.M > 17
-    again = solve_periodic_adaptive(dl_of(5.0, 7.0), 12, tail_tol=tail_tol,
-                                    guess=resonant.theta.T)  # fmt: skip
-    assert again.M == resonant.M

@@ -281,19 +281,6 @@ def _amplitude_continuation(dl: Dimensionless, N: int, M: int, rtol: float, step
     return res
 
 
-def start_instants(guess: np.ndarray, M0: int, tail_tol: float) -> int:
-    """The fewest instants of the doubling sequence M0, 2 M0 - 1, ... (at most the guess's own
-    count, made odd) at which the neighbour's orbit `guess` (M', N-1), resampled, has a harmonic
-    tail within `tail_tol`: the harmonics it needs, not the instants it was solved at.  Along a
-    sweep the calm points after a resonance then go back to M0 instead of keeping the resonant
-    M (Fig. 3's line: 3.7 s of CPU instead of 5.6 s, RMS within 5e-13; docs/stability.md)."""
-    cap = guess.shape[0] if guess.shape[0] % 2 else guess.shape[0] + 1
-    M = M0
-    while M < cap and harmonic_tail(trig_interpolate(guess, M)) > tail_tol:
-        M = 2 * M - 1
-    return min(M, cap)
-
-
 def solve_periodic_adaptive(
     dl: Dimensionless,
     N: int = 40,
@@ -305,13 +292,12 @@ def solve_periodic_adaptive(
 ) -> PeriodicResult:
     """`solve_periodic` with M doubled (2M - 1) until the harmonic tail is below `tail_tol`.
 
-    `guess` (M', N-1) from a neighbouring scene (continuation) is resampled to the M it needs
-    (`start_instants`).
+    `guess` (M', N-1) from a neighbouring scene (continuation) is resampled to M points.
     """
     M = M0 if M0 % 2 else M0 + 1
     if guess is not None:
         guess = np.asarray(guess, dtype=float)
-        M = start_instants(guess, M, tail_tol)
+        M = max(M, guess.shape[0] if guess.shape[0] % 2 else guess.shape[0] + 1)
         if guess.shape[0] != M:
             guess = trig_interpolate(guess, M)
     res = solve_periodic(dl, N, M, guess=guess, rtol=rtol)
