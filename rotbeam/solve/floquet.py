@@ -44,7 +44,7 @@ from __future__ import annotations
 import math
 import time
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 import scipy.linalg as sla
@@ -80,6 +80,9 @@ class FloquetResult:
     #: the same rule on a third of the steps (every third step's exponential cubed), whose
     #: distance from this one estimates its error; None when the steps were fixed or full
     coarse: FloquetResult | None = None
+    #: (w,) once `fixed_point_offset` has solved for it: the acceptance of a first try and the
+    #: certificate both ask
+    _offset: tuple = field(default=(), init=False, repr=False, compare=False)
 
     @property
     def spread(self) -> float:
@@ -89,6 +92,11 @@ class FloquetResult:
     def fixed_point_offset(self) -> np.ndarray | None:
         """w with (I - Phi) w = defect: how far the orbit's start is from the true periodic
         state, to first order (None without a defect, or when 1 is a multiplier)."""
+        if not self._offset:
+            self._offset = (self._solve_offset(),)
+        return self._offset[0]
+
+    def _solve_offset(self) -> np.ndarray | None:
         if self.defect is None or not self.stable:
             return None
         return np.linalg.solve(np.eye(self.monodromy.shape[0]) - self.monodromy, self.defect)

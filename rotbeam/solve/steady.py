@@ -53,6 +53,7 @@ from .periodic import PeriodicResult, solve_periodic, solve_periodic_adaptive
 from .spectral import trig_interpolate
 from .stability import (
     STATUS_UNSTABLE,
+    Certificate,
     leave_orbit,
     monodromy_certificate,
     orbit_stability,
@@ -184,7 +185,7 @@ def _from_collocation(
     fl = orbit_stability(model, dl, res)
     ok = res.converged and res.harmonic_tail <= num.tail_tol and model.eta > 0.0
     msg = f"collocation M={res.M}: {res.message}, harmonic tail {res.harmonic_tail:.2g}"
-    cert = monodromy_certificate(fl, res.theta, num.ss_tol, max(dl.omega, 1.0))
+    cert = orbit_certificate(fl, res, num, dl)
     if cert is not None:
         msg += f"; {cert.describe()}"
     msg += stability_note(fl)
@@ -211,6 +212,13 @@ def _from_collocation(
     )
 
 
+def orbit_certificate(
+    fl: FloquetResult | None, periodic: PeriodicResult, num: Numerics, dl: Dimensionless
+) -> Certificate | None:
+    """`monodromy_certificate` of a collocated orbit with the run's ss_tol and velocity scale."""
+    return monodromy_certificate(fl, periodic.theta, num.ss_tol, max(dl.omega, 1.0))
+
+
 def certified(
     model: DiscreteElastica,
     dl: Dimensionless,
@@ -221,16 +229,29 @@ def certified(
 ) -> tuple[SteadyState | None, str]:
     """The collocated orbit as the steady state when the monodromy certifies it (no time
     stepping), else None and why not (for the message of the time-stepped check)."""
+    state, why_not, _ = _certify(model, dl, num, periodic, fl, t0)
+    return state, why_not
+
+
+def _certify(
+    model: DiscreteElastica,
+    dl: Dimensionless,
+    num: Numerics,
+    periodic: PeriodicResult,
+    fl: FloquetResult | None,
+    t0: float,
+) -> tuple[SteadyState | None, str, Certificate | None]:
+    """`certified`, with the certificate it decided by (None when there was none to give)."""
     if num.certify != "monodromy" or periodic.harmonic_tail > num.tail_tol:
-        return None, ""
-    cert = monodromy_certificate(fl, periodic.theta, num.ss_tol, max(dl.omega, 1.0))
+        return None, "", None
+    cert = orbit_certificate(fl, periodic, num, dl)
     if cert is not None and cert.ambiguous:  # the first try's steps cannot tell: all of them
         fl = orbit_stability(model, dl, periodic, steps=default_steps(periodic.M))
-        cert = monodromy_certificate(fl, periodic.theta, num.ss_tol, max(dl.omega, 1.0))
+        cert = orbit_certificate(fl, periodic, num, dl)
     if cert is None:
-        return None, ""
+        return None, "", None
     if not cert.certified:
-        return None, f"not certified by the monodromy ({cert.describe()}); "
+        return None, f"not certified by the monodromy ({cert.describe()}); ", cert
     tau, theta = collocation_window(dl, num, periodic)
     message = (
         f"collocation orbit (M={periodic.M}, harmonic tail {periodic.harmonic_tail:.2g}) "
@@ -250,7 +271,7 @@ def certified(
         floquet=fl,
         state=np.concatenate([periodic.theta[:, 0], periodic.theta_t[:, 0]]),
     )
-    return state, ""
+    return state, "", cert
 
 
 @dataclass(frozen=True)
@@ -520,28 +541,19 @@ def certified_or_refined(
     stepping that would verify the coarse one (docs/stability.md); it stops where the offset
     does not halve.  Returns (the state or None,
     why not, the last orbit, its multipliers)."""
-    state, why_not = certified(model, dl, num, periodic, fl, t0)
-    offset = _offset(fl, periodic, num, dl)
+    state, why_not, cert = _certify(model, dl, num, periodic, fl, t0)
     while state is None and why_not and 2 * periodic.M - 1 <= REFINE_M_MAX:
         M = 2 * periodic.M - 1
         finer = solve_periodic(dl, model.grid.N, M, guess=trig_interpolate(periodic.theta.T, M))
         finer_fl = orbit_stability(model, dl, finer)
         if finer_fl is None or not finer_fl.stable:
             break
+        previous = cert.offset
         periodic, fl = finer, finer_fl
-        state, why_not = certified(model, dl, num, periodic, fl, t0)
-        offset, previous = _offset(fl, periodic, num, dl), offset
-        if not offset <= previous / 2:  # the defect does not fall with M: time stepping decides
+        state, why_not, cert = _certify(model, dl, num, periodic, fl, t0)
+        if cert is None or not cert.offset <= previous / 2:  # the defect does not fall with M
             break
     return state, why_not, periodic, fl
-
-
-def _offset(
-    fl: FloquetResult | None, periodic: PeriodicResult, num: Numerics, dl: Dimensionless
-) -> float:
-    """The certificate's offset estimate of an orbit (inf without one)."""
-    cert = monodromy_certificate(fl, periodic.theta, num.ss_tol, max(dl.omega, 1.0))
-    return cert.offset if cert is not None else math.inf
 
 
 def steady_state(
