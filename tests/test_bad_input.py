@@ -540,3 +540,27 @@ def test_invalid_flags_name_flag_and_value(case):
     except ValueError:
         shown = [repr(text)]
     assert any(v in line for v in shown), line
+
+
+@pytest.mark.parametrize(
+    "args, words",
+    [
+        (["--column", "E9_L9"], ["--column E9_L9", "E100000_L0.01"]),
+        (["--column"], ["--column needs a column id"]),
+        (["--column", "E100000_L0.01", "nope.yaml"], ["config nope.yaml", "no such file"]),
+        (["x"], ["repeats = 'x'", ">= 1"]),
+        (["0"], ["repeats = 0", ">= 1"]),
+    ],
+)
+def test_floquet_steps_bench_names_the_bad_argument(args, words, monkeypatch):
+    """`python3 -m rotbeam.bench.floquet_steps` with a bad argument: one line naming it and what
+    is allowed, before any simulation."""
+    from rotbeam.bench import floquet_steps
+
+    monkeypatch.chdir(ROOT)
+    with pytest.raises(SystemExit) as exc:
+        floquet_steps.main(args)
+    message = str(exc.value)
+    assert message.startswith("floquet_steps: ") and "\n" not in message
+    for word in words:
+        assert word in message

@@ -22,6 +22,7 @@ from pathlib import Path
 
 import pandas as pd
 
+from ..config.errors import RotbeamInputError
 from ..model.params import Beam, Drive, Effects
 from ..simulate.scene import Scene, simulate
 from ..solve import floquet
@@ -91,8 +92,14 @@ def column_table(column: str, config_path: str = "config/config.yaml") -> pd.Dat
     from ..simulate.studies import fig7_beams, grid_columns, run_grid_lines
     from ..simulate.sweeps import numerics_from_config
 
-    config = load_yaml(Path(config_path).read_text())
+    path = Path(config_path)
+    if not path.is_file():
+        raise RotbeamInputError(f"config {config_path}: no such file")
+    config = load_yaml(path.read_text())
     columns, _ = grid_columns(fig7_beams(config))
+    if column not in columns:
+        raise RotbeamInputError(f"--column {column}: not a Fig. 7 column of {config_path}; "
+                                f"one of {', '.join(columns)}")  # fmt: skip
     spec = {k: config["fig7"][k] for k in ("c_max", "lo", "hi", "points")}
     with captured_passes() as calls:
         run_grid_lines(columns[column], spec, config["amplitude"],
@@ -101,12 +108,27 @@ def column_table(column: str, config_path: str = "config/config.yaml") -> pd.Dat
     return pd.DataFrame([pass_rows(column, call, 1) for call in calls])
 
 
+def _table(args: list[str]) -> pd.DataFrame:
+    """The table the command line asks for: a column's passes or the benchmark scenes'."""
+    if args and args[0] == "--column":
+        if len(args) < 2:
+            raise RotbeamInputError("--column needs a column id, e.g. --column E100000_L0.01")
+        return column_table(*args[1:3])
+    try:
+        repeats = int(args[0]) if args else 3
+    except ValueError:
+        raise RotbeamInputError(f"repeats = {args[0]!r}: must be a whole number >= 1") from None
+    if repeats < 1:
+        raise RotbeamInputError(f"repeats = {repeats}: must be a whole number >= 1")
+    return step_table(repeats=repeats)
+
+
 def main(argv: list[str] | None = None) -> None:
     args = sys.argv[1:] if argv is None else argv
-    if args and args[0] == "--column":
-        df = column_table(*args[1:3])
-    else:
-        df = step_table(repeats=int(args[0]) if args else 3)
+    try:
+        df = _table(args)
+    except RotbeamInputError as exc:
+        sys.exit(f"floquet_steps: {exc}")
     with pd.option_context("display.width", 200, "display.float_format", "{:.3g}".format):
         print(df.to_string(index=False))
     kept = df["steps"] < df["M"].map(floquet.default_steps)
