@@ -316,7 +316,8 @@ def _response(res, args: argparse.Namespace) -> dict[str, Any]:
         print(f"\rresponse (N = {args.response_N}): period {done} of {total}", end="",
               file=sys.stderr, flush=True)  # fmt: skip
 
-    r = response_of(res.scene, args.response_periods, args.response_periods, N=args.response_N,
+    r = response_of(res.scene.model(args.response_N), res.scene.beam.T, args.response_periods,
+                    args.response_periods,
                     progress=progress if args.progress else None)  # fmt: skip
     return r.as_dict() | {"_response": r}
 

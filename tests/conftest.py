@@ -104,6 +104,30 @@ def quick_run(tmp_path_factory) -> Path:
     return work
 
 
+def elastica(N: int, hub: float, eta: float, effects=None, kappa: float = 0.0, lam: float = 0.0):
+    """The DiscreteElastica of the numbers it reads, for tests of its parts: hub ratio, damping,
+    effects and, with `extension`, the axial compliance kappa = (h/L)^2 / 12 and the steady
+    rotation lam whose tension stretches it (the scene turns steadily at lam)."""
+    import math
+
+    from rotbeam.model.elastica import DiscreteElastica
+    from rotbeam.model.params import Dimensionless, Effects
+
+    effects = effects if effects is not None else Effects()
+    slenderness = math.sqrt(12.0 * kappa) if effects.extension else None
+    return DiscreteElastica(Dimensionless(hub, eta, lam, 0.0, 1.0, effects, slenderness), N)
+
+
+def steady(dl, num=None, **kwargs):
+    """`steady_state` of the elastica of scene `dl` on the grid of `num` (default Numerics())."""
+    from rotbeam.model.elastica import DiscreteElastica
+    from rotbeam.solve.numerics import Numerics
+    from rotbeam.solve.steady import steady_state
+
+    num = num if num is not None else Numerics()
+    return steady_state(DiscreteElastica(dl, num.N), num, **kwargs)
+
+
 def numerical_first_order_jacobian(model, theta, theta_t, lam: float, lam_dot: float):
     """Central differences (h = 1e-6) of the model's first-order right-hand side (Theta_t,
     acceleration) at the state (theta, theta_t): what `first_order_jacobian` must equal."""
@@ -112,8 +136,7 @@ def numerical_first_order_jacobian(model, theta, theta_t, lam: float, lam_dot: f
     n = model.n
 
     def F(z):
-        a, _, _ = model.acceleration(z[:n], z[n:], lam, lam_dot)
-        return np.concatenate([z[n:], a])
+        return np.concatenate([z[n:], model.acceleration(z[:n], z[n:], lam, lam_dot)])
 
     z, h = np.concatenate([theta, theta_t]), 1e-6
     return np.array([(F(z + h * e) - F(z - h * e)) / (2 * h) for e in np.eye(2 * n)]).T

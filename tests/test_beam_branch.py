@@ -8,11 +8,12 @@ import math
 
 import numpy as np
 import pytest
+from conftest import steady
 
 from rotbeam.model.criterion import rms
 from rotbeam.model.elastica import DiscreteElastica
 from rotbeam.model.modes import linear_forced_response
-from rotbeam.model.params import Beam, Effects
+from rotbeam.model.params import Beam, Dimensionless, Drive
 from rotbeam.solve.beam_branch import BeamBranchProblem, beam_branch
 from rotbeam.solve.periodic import solve_periodic
 
@@ -29,20 +30,21 @@ def test_small_amplitude_branch_is_the_fixed_frequency_orbits_and_the_linear_res
     assert not bb.branch.folds()
     assert all(np.diff([pt.p for pt in pts]) > 0) and all(pt.stable for pt in pts)
     pr = bb.problem
-    model = DiscreteElastica(N, beam.hub_ratio, beam.eta, Effects())
     checked = 0
     for pt in pts[:: max(1, len(pts) // 6)]:
         if pt.p > 7.5:
             continue
         dl = pr.dimensionless(pt.p)
-        ref = solve_periodic(dl, N, pr.M)  # from the linear guess, not from the branch
+        ref = solve_periodic(
+            DiscreteElastica(dl, N), pr.M
+        )  # from the linear guess, not from the branch
         assert ref.converged
         X = pt.x.reshape(pr.M, N - 1)
         assert np.max(np.abs(X - ref.theta.T)) <= 1e-7 * np.max(np.abs(X))
-        amp, _ = linear_forced_response(dl, N)
+        amp, _ = linear_forced_response(DiscreteElastica(dl, N))
         tau = np.arange(64) * dl.period / 64
         lin = np.real(amp[:, None] * np.exp(1j * dl.omega * tau)[None, :])
-        y_lin = rms(model.grid.midspan(lin))
+        y_lin = rms(pr.model.grid.midspan(lin))
         assert abs(rms(pr.midspan(pt.x, pt.p)) - y_lin) <= 0.01 * y_lin
         checked += 1
     assert checked >= 4
@@ -50,10 +52,11 @@ def test_small_amplitude_branch_is_the_fixed_frequency_orbits_and_the_linear_res
 
 def test_residual_is_zero_only_at_the_orbit_of_its_own_frequency():
     """p is f_d in Hz: an orbit solved at 6 Hz is a zero of the residual at 6 Hz, not at 6.1."""
-    pr = BeamBranchProblem(Beam(), 5.0, 1.0, Effects(), 6, 17)
+    template = Dimensionless.from_physical(Beam(), Drive(omega0=5.0, f_d=6.0, amplitude=1.0))
+    pr = BeamBranchProblem(DiscreteElastica(template, 6), Beam().T, 17)
     dl = pr.dimensionless(6.0)
     assert math.isclose(dl.omega, 2 * math.pi * 6.0 * Beam().T)
-    res = solve_periodic(dl, 6, 17)
+    res = solve_periodic(DiscreteElastica(dl, 6), 17)
     x = res.theta.T.ravel()
     assert np.max(np.abs(pr.residual(x, 6.0))) < 1e-8
     assert np.max(np.abs(pr.residual(x, 6.1))) > 1e-3
@@ -73,14 +76,13 @@ def test_time_stepping_from_a_given_state_follows_the_beam():
     a state of the wrong size is refused."""
     from rotbeam.model.params import Dimensionless, Drive
     from rotbeam.solve.numerics import Numerics
-    from rotbeam.solve.steady import steady_state
 
-    dl = Dimensionless.from_physical(Beam(), Drive(omega0=5.0, f_d=2.0, amplitude=1.0), Effects())
+    dl = Dimensionless.from_physical(Beam(), Drive(omega0=5.0, f_d=2.0, amplitude=1.0))
     num = Numerics(N=6, start="rest")
-    first = steady_state(dl, num)
+    first = steady(dl, num)
     assert first.converged and first.state is not None and first.periods > 5
-    again = steady_state(dl, num, state0=first.state)
+    again = steady(dl, num, state0=first.state)
     assert again.converged and again.periods <= 3 and again.periodic is None
     assert abs(rms(again.y_m) - rms(first.y_m)) <= 2e-3 * rms(first.y_m)
     with pytest.raises(ValueError, match="state0"):
-        steady_state(dl, num, state0=np.zeros(3))
+        steady(dl, num, state0=np.zeros(3))

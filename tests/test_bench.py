@@ -11,6 +11,7 @@ import pytest
 from rotbeam.bench.plan import BenchPlan
 from rotbeam.bench.report import choose_default, speedups, write_outputs
 from rotbeam.bench.run import reference, run_benchmark
+from rotbeam.model.elastica import DiscreteElastica
 from rotbeam.model.params import Beam, Drive, Effects
 from rotbeam.simulate.scene import Scene, build_scene, simulate
 from rotbeam.solve.numerics import Numerics
@@ -103,8 +104,8 @@ def test_richardson_default_within_half_a_percent(converged_refs, s):
 
 def test_krylov_newton_equals_dense_newton():
     dl = build_scene({"drive": {"omega0": 5.0, "f_d": 7.0}}).dimensionless
-    dense = solve_periodic(dl, 12, 17, linear="dense")
-    krylov = solve_periodic(dl, 12, 17, linear="krylov")
+    dense = solve_periodic(DiscreteElastica(dl, 12), 17, linear="dense")
+    krylov = solve_periodic(DiscreteElastica(dl, 12), 17, linear="krylov")
     assert dense.converged and krylov.converged and krylov.krylov_iterations > 0
     np.testing.assert_allclose(krylov.theta, dense.theta, rtol=0, atol=1e-10)
 

@@ -22,9 +22,9 @@ from rotbeam.config.errors import RotbeamInputError
 from rotbeam.model.elastica import DiscreteElastica
 from rotbeam.model.elastica_printed import PrintedElastica
 from rotbeam.model.params import Beam, Dimensionless, Drive, omega0_for_cmax
-from rotbeam.model.quasistatic import solve_static_bvp
 from rotbeam.simulate.sweeps import resonance_frequency_hz
 from rotbeam.solve.numerics import Numerics
+from rotbeam.solve.static_bvp import solve_static_bvp
 
 BEAM = Beam()
 SCAN = ScanSpec(c_max=(1.0,), N=20, lo=0.15, hi=0.5, points=8)
@@ -113,32 +113,42 @@ def test_printed_U3_and_symmetric_S_change_c_by_about_a_thousandth():
         assert 0.0 < r["c"][th] - ref["c"][th] < 0.004
 
 
+STEADY = Dimensionless(BEAM.hub_ratio, BEAM.eta, 0.0, 0.0, 1.0)
+
+
 def test_printed_variants_reduce_to_ours_without_misprints():
-    ref = DiscreteElastica(12, BEAM.hub_ratio, BEAM.eta)
-    var = PrintedElastica(12, BEAM.hub_ratio, BEAM.eta, misprints=())
-    th = 0.05 * np.sin(np.arange(11))
-    assert np.allclose(var.load_torque(th, 0.5, 2.0), ref.load_torque(th, 0.5, 2.0))
-    sym = PrintedElastica(12, BEAM.hub_ratio, BEAM.eta, misprints=("symS",))
-    B = ref.mass_and_gyro(th)[1]
-    S = sym.velocity_matrix(th)
+    ref = DiscreteElastica(STEADY, 12)
+    var = PrintedElastica(STEADY, 12, misprints=())
+    th = 0.05 * np.sin(np.arange(11))[None]
+    assert np.allclose(
+        var.load_torque_rows(th, [0.5], [2.0]), ref.load_torque_rows(th, [0.5], [2.0])
+    )
+    sym = PrintedElastica(STEADY, 12, misprints=("symS",))
+    B = ref.inertia_rows(th)[1]
+    S = sym.velocity_matrix_rows(th, B)[0]
+    B = B[0]
     St = S / sym.grid.W  # the printed S~ itself (W = U L is not symmetric)
     assert np.allclose(St, St.T) and np.allclose(np.tril(S), np.tril(B))
     assert not np.allclose(np.triu(S), np.triu(B))
-    kds = PrintedElastica(12, BEAM.hub_ratio, BEAM.eta, misprints=("Kds",))
+    kds = PrintedElastica(STEADY, 12, misprints=("Kds",))
     assert np.allclose(kds.grid.K * 12, ref.grid.K)
 
 
 def test_printed_bracket_tension_is_nonzero_at_the_tip():
     """The printed bracket's extra tension e(s) = 1 - s^2/4 - (ds/2)(1 - s) does not vanish at
     the free end (n(1) = 0 is a boundary condition)."""
-    m = PrintedElastica(20, BEAM.hub_ratio, BEAM.eta, misprints=("bracket",))
+    m = PrintedElastica(STEADY, 20, misprints=("bracket",))
     assert m.extra[-1] == pytest.approx(1 - 0.95**2 / 4 - 0.025 * 0.05)
-    dl_jac = m.load_torque_jacobian(0.01 * np.ones(19), 0.7, 3.0)
+    dl_jac = m.load_torque_rows(0.01 * np.ones((1, 19)), [0.7], [3.0], jacobian=True)[1][0]
     h = 1e-7
     th = 0.01 * np.ones(19)
     e = np.zeros(19)
     e[5] = h
-    fd = (m.load_torque(th + e, 0.7, 3.0) - m.load_torque(th - e, 0.7, 3.0)) / (2 * h)
+
+    def torque(t):
+        return m.load_torque_rows(t[None], [0.7], [3.0])[0]
+
+    fd = (torque(th + e) - torque(th - e)) / (2 * h)
     assert np.allclose(dl_jac[:, 5], fd, atol=1e-6)
 
 

@@ -2,16 +2,17 @@
 
 import numpy as np
 import pytest
+from conftest import steady
 from scipy.integrate import solve_ivp
 
 from rotbeam.model.criterion import rms
-from rotbeam.model.elastica import DiscreteElastica, Grid
+from rotbeam.model.elastica import DiscreteElastica
+from rotbeam.model.grid import Grid
 from rotbeam.model.modes import natural_frequencies_hz
 from rotbeam.model.params import Beam, Dimensionless, Drive
 from rotbeam.simulate.scene import Scene, simulate
 from rotbeam.solve.numerics import Numerics
 from rotbeam.solve.periodic import solve_periodic, solve_periodic_adaptive
-from rotbeam.solve.steady import steady_state
 
 BEAM = Beam()
 
@@ -25,7 +26,7 @@ def test_rms_converges_in_N_with_second_order():
     dl = dl_of(5.0, 2.0)
     vals = []
     for N in (10, 20, 40, 80):
-        res = solve_periodic(dl, N, M=17)
+        res = solve_periodic(DiscreteElastica(dl, N), M=17)
         assert res.converged
         vals.append(rms(Grid.build(N).midspan(res.theta)))
     d = np.abs(np.diff(vals))
@@ -35,13 +36,13 @@ def test_rms_converges_in_N_with_second_order():
 
 def test_periodic_state_is_a_fixed_point_of_the_period_map():
     dl = dl_of(10.0, 4.0)
-    res = solve_periodic(dl, 20, M=33)
+    res = solve_periodic(DiscreteElastica(dl, 20), M=33)
     assert res.converged and res.harmonic_tail < 1e-6
-    m = DiscreteElastica(20, dl.hub_ratio, dl.eta, dl.effects)
+    m = DiscreteElastica(dl, 20)
     n = m.n
 
     def rhs(t, z):
-        a, _, _ = m.acceleration(z[:n], z[n:], dl.lam(t), dl.lam_dot(t))
+        a = m.acceleration(z[:n], z[n:], dl.lam(t), dl.lam_dot(t))
         return np.concatenate([z[n:], a])
 
     z0 = np.concatenate([res.theta[:, 0], res.theta_t[:, 0]])
@@ -65,8 +66,8 @@ def test_periodic_start_agrees_with_long_integration():
     """Two routes to the steady state: collocation + verification, and a long time integration
     from the quasi-static state (from rest the excited grid modes make Radau crawl: issue 5)."""
     dl = dl_of(5.0, 2.0)
-    a = steady_state(dl, Numerics(N=20, start="periodic", ss_tol=1e-4))
-    b = steady_state(dl, Numerics(N=20, start="quasistatic", ss_tol=1e-5))
+    a = steady(dl, Numerics(N=20, start="periodic", ss_tol=1e-4))
+    b = steady(dl, Numerics(N=20, start="quasistatic", ss_tol=1e-5))
     assert a.converged and b.converged
     assert b.periods > 3 * a.periods  # the transient from rest is long
     assert rms(a.y_m) == pytest.approx(rms(b.y_m), rel=2e-4)
@@ -84,7 +85,7 @@ def test_reference_beam_resonance_near_7_hz():
     fds = np.array([4.0, 5.5, 6.5, 7.0, 7.5, 8.5, 10.0])
     vals = []
     for fd in fds:
-        res = solve_periodic_adaptive(dl_of(5.0, fd), 20, tail_tol=1e-3)
+        res = solve_periodic_adaptive(DiscreteElastica(dl_of(5.0, fd), 20), tail_tol=1e-3)
         assert res.converged
         vals.append(rms(Grid.build(20).midspan(res.theta)))
     assert 6.5 <= fds[int(np.argmax(vals))] <= 7.5
@@ -98,11 +99,11 @@ def test_verified_orbit_is_reported_from_the_collocation():
 
     dl = dl_of(5.0, 2.0)
     num = Numerics(N=20, ss_tol=1e-2, rtol=1e-2, tail_tol=1e-2, certify="time")
-    a = steady_state(dl, num)
+    a = steady(dl, num)
     assert a.converged and a.periods == 1 and "verified" in a.message
     samples = trig_interpolate(a.periodic.theta.T, num.samples_per_period).T
     np.testing.assert_allclose(a.theta, samples, rtol=0, atol=1e-14)
-    tight = steady_state(dl, Numerics(N=20, start="quasistatic", ss_tol=1e-6, rtol=1e-8))
+    tight = steady(dl, Numerics(N=20, start="quasistatic", ss_tol=1e-6, rtol=1e-8))
     assert tight.converged
     assert rms(a.y_m) == pytest.approx(rms(tight.y_m), rel=1e-5)
 
@@ -117,17 +118,17 @@ def test_verification_rejects_an_inaccurate_orbit(monkeypatch):
     import rotbeam.solve.steady as steady
 
     dl = dl_of(5.0, 7.0)
-    coarse = steady_state(dl, Numerics(N=20, integrate=False, tail_tol=0.05))
+    coarse = steady(dl, Numerics(N=20, integrate=False, tail_tol=0.05))
     assert coarse.periodic.M == 17
     num = Numerics(N=20, tail_tol=0.05, ss_tol=1e-5, rtol=1e-7)
-    refined = steady_state(dl, num)
+    refined = steady(dl, num)
     assert refined.converged and refined.periods == 0 and refined.periodic.M > 17
     assert "certified by the monodromy" in refined.message
     monkeypatch.setattr(steady, "REFINE_M_MAX", 17)
-    checked = steady_state(dl, num)
+    checked = steady(dl, num)
     assert checked.converged and checked.periods > 1 and "verified" not in checked.message
     assert checked.message.startswith("not certified by the monodromy")  # nor by its monodromy
-    ref = steady_state(dl, Numerics(N=20, tail_tol=1e-8, integrate=False))
+    ref = steady(dl, Numerics(N=20, tail_tol=1e-8, integrate=False))
     assert ref.periodic.harmonic_tail < 1e-6
     err_coarse = abs(rms(coarse.y_m) - rms(ref.y_m)) / rms(ref.y_m)
     assert err_coarse > 5e-4  # the certificate had something to catch

@@ -2,9 +2,9 @@
 
 import numpy as np
 import pytest
-from conftest import numerical_first_order_jacobian
+from conftest import elastica, numerical_first_order_jacobian
 
-from rotbeam.model.elastica import DiscreteElastica, Grid
+from rotbeam.model.grid import Grid
 from rotbeam.model.params import Effects
 
 
@@ -14,7 +14,7 @@ def test_straight_beam_centrifugal_tension_closed_form(N, hub):
     """n_x(s) = lam^2 [r_o (1 - s) + (1 - s^2)/2] on the straight spinning beam (exact here:
     the load is linear in s, so the trapezoid sums of Q P integrate it exactly)."""
     lam = 1.7
-    m = DiscreteElastica(N, hub, 0.1)
+    m = elastica(N, hub, 0.1)
     z = np.zeros(m.n)
     nx, ny = m.tension(z, z, z, lam, 0.0)
     s = m.grid.s[:-1]
@@ -28,15 +28,15 @@ def test_straight_beam_centrifugal_tension_closed_form(N, hub):
 
 
 def test_straight_beam_is_an_equilibrium_without_euler_load():
-    m = DiscreteElastica(20, 2.875, 0.1)
+    m = elastica(20, 2.875, 0.1)
     z = np.zeros(m.n)
-    acc, _, _ = m.acceleration(z, z, 3.0, 0.0)
+    acc = m.acceleration(z, z, 3.0, 0.0)
     np.testing.assert_array_equal(acc, 0.0)
 
 
 @pytest.mark.parametrize("coriolis", [False, True])
 def test_first_order_jacobian_matches_finite_differences(coriolis):
-    m = DiscreteElastica(12, 2.875, 0.14, Effects(coriolis=coriolis))
+    m = elastica(12, 2.875, 0.14, Effects(coriolis=coriolis))
     rng = np.random.default_rng(1)
     th, tt = 0.5 * rng.normal(size=m.n), rng.normal(size=m.n)
     J = m.first_order_jacobian(th, tt, 1.3, 0.7)
@@ -47,15 +47,18 @@ def test_first_order_jacobian_matches_finite_differences(coriolis):
 @pytest.mark.parametrize("effects", [Effects(), Effects(coriolis=True, extension=True)])
 def test_batched_first_order_rows_equal_the_per_instant_ones(effects):
     """`first_order_rows` at m instants at once (what the Floquet pass uses) gives the
-    per-instant `first_order_jacobian` and `acceleration` to round-off, instant by instant."""
-    m = DiscreteElastica(12, 2.875, 0.14, effects, 1e-2, 3.0)
+    time stepper's per-instant `acceleration` to round-off, and rows taken one instant at a
+    time the same Jacobians."""
+    m = elastica(12, 2.875, 0.14, effects, 1e-2, 3.0)
     rng = np.random.default_rng(2)
     th, tt = 0.7 * rng.normal(size=(5, m.n)), rng.normal(size=(5, m.n))
     lam, lam_dot = rng.normal(size=5), rng.normal(size=5)
     F, J = m.first_order_rows(th, tt, lam, lam_dot)
     for k in range(5):
-        Jk = m.first_order_jacobian(th[k], tt[k], lam[k], lam_dot[k])
-        ak = m.acceleration(th[k], tt[k], lam[k], lam_dot[k])[0]
+        Jk = m.first_order_rows(th[k : k + 1], tt[k : k + 1], lam[k : k + 1], lam_dot[k : k + 1])[
+            1
+        ][0]
+        ak = m.acceleration(th[k], tt[k], lam[k], lam_dot[k])
         np.testing.assert_allclose(J[k], Jk, rtol=0, atol=1e-12 * np.abs(Jk).max())
         np.testing.assert_allclose(F[k], np.concatenate([tt[k], ak]), rtol=0,
                                    atol=1e-12 * np.abs(ak).max())  # fmt: skip
@@ -86,15 +89,16 @@ def test_nonrotating_frequency_second_order():
 
 @pytest.mark.parametrize("softening,euler", [(False, True), (True, True), (True, False)])
 def test_load_torque_rows_equal_the_single_instant_forms(softening, euler):
-    """Batched loads and their Jacobians (collocation, quasi-static) equal the per-instant ones."""
-    m = DiscreteElastica(16, 2.875, 0.1, Effects(softening=softening, euler=euler))
+    """Loads and their Jacobians at m instants at once equal those taken one instant at a time."""
+    m = elastica(16, 2.875, 0.1, Effects(softening=softening, euler=euler))
     rng = np.random.default_rng(3)
     theta = rng.normal(scale=0.5, size=(7, m.n))
     lam, lam_dot = rng.normal(size=7), rng.normal(size=7)
     rows, jac = m.load_torque_rows(theta, lam, lam_dot, jacobian=True)
     np.testing.assert_array_equal(m.load_torque_rows(theta, lam, lam_dot), rows)
     for j in range(7):
-        np.testing.assert_allclose(rows[j], m.load_torque(theta[j], lam[j], lam_dot[j]), atol=1e-14)
-        np.testing.assert_allclose(
-            jac[j], m.load_torque_jacobian(theta[j], lam[j], lam_dot[j]), atol=1e-13
+        one, one_jac = m.load_torque_rows(
+            theta[j : j + 1], lam[j : j + 1], lam_dot[j : j + 1], True
         )
+        np.testing.assert_allclose(rows[j], one[0], atol=1e-14)
+        np.testing.assert_allclose(jac[j], one_jac[0], atol=1e-13)

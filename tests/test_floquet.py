@@ -8,6 +8,7 @@ import math
 
 import numpy as np
 import pytest
+from conftest import steady
 from scipy.integrate import solve_ivp
 
 from rotbeam.model.elastica import DiscreteElastica
@@ -25,7 +26,7 @@ from rotbeam.solve.floquet import (
 from rotbeam.solve.numerics import Numerics
 from rotbeam.solve.periodic import solve_periodic, solve_periodic_adaptive
 from rotbeam.solve.stability import CERTIFICATE_SAFETY, monodromy_certificate
-from rotbeam.solve.steady import certified, steady_state
+from rotbeam.solve.steady import accept_certified
 
 NO_EULER = Effects(centrifugal=True, softening=True, euler=False, damping=True)
 
@@ -33,10 +34,10 @@ NO_EULER = Effects(centrifugal=True, softening=True, euler=False, damping=True)
 def _linear_beam(amplitude: float, N: int = 12):
     dl = Dimensionless.from_physical(Beam(), Drive(omega0=20.0, f_d=3.0, amplitude=amplitude),
                                      NO_EULER)  # fmt: skip
-    model = DiscreteElastica(N, dl.hub_ratio, dl.eta, NO_EULER)
-    res = solve_periodic(dl, N, 17)
+    model = DiscreteElastica(dl, N)
+    res = solve_periodic(model, 17)
     assert res.converged and np.max(np.abs(res.theta)) == 0.0  # the straight beam
-    return dl, model, beam_floquet(model, dl, res.theta, res.theta_t)
+    return dl, model, beam_floquet(model, res.theta, res.theta_t)
 
 
 def test_linear_beam_multipliers_closed_form():
@@ -78,14 +79,14 @@ def test_monodromy_against_finite_differences_of_the_period_map():
     damping leaves as undamped as the first."""
     N = 4
     dl = Dimensionless.from_physical(Beam(), Drive(omega0=5.0, f_d=4.0), Effects())
-    model = DiscreteElastica(N, dl.hub_ratio, dl.eta, dl.effects)
-    res = solve_periodic_adaptive(dl, N, tail_tol=1e-6)
+    model = DiscreteElastica(dl, N)
+    res = solve_periodic_adaptive(model, tail_tol=1e-6)
     assert res.converged and res.harmonic_tail < 1e-6
-    fl = beam_floquet(model, dl, res.theta, res.theta_t, steps=default_steps(res.M))
+    fl = beam_floquet(model, res.theta, res.theta_t, steps=default_steps(res.M))
     n = model.n
 
     def rhs(t, z):
-        acc, _, _ = model.acceleration(z[:n], z[n:], dl.lam(t), dl.lam_dot(t))
+        acc = model.acceleration(z[:n], z[n:], dl.lam(t), dl.lam_dot(t))
         return np.concatenate([z[n:], acc])
 
     def jac(t, z):
@@ -105,7 +106,7 @@ def test_monodromy_against_finite_differences_of_the_period_map():
     assert rel < 1e-3
     mu_fd = np.max(np.abs(np.linalg.eigvals(fd)))
     assert abs(fl.max_abs - mu_fd) < 1e-5
-    assert abs(beam_floquet(model, dl, res.theta, res.theta_t).max_abs - mu_fd) < 1e-5
+    assert abs(beam_floquet(model, res.theta, res.theta_t).max_abs - mu_fd) < 1e-5
 
 
 # --- Duffing oscillator x'' + c x' + k x + b x^3 = F cos(w t) -----------------------------------
@@ -188,7 +189,7 @@ def test_beam_unstable_orbit_not_reported_as_steady(monkeypatch, integrate):
     monkeypatch.setattr(floquet.FloquetResult, "stable", property(lambda s: s.max_abs < 0.5))
     monkeypatch.setattr(floquet.FloquetResult, "unstable", property(lambda s: s.max_abs > 0.5))
     dl = Dimensionless.from_physical(Beam(), Drive(omega0=5.0, f_d=2.0), Effects())
-    res = steady_state(dl, Numerics(N=10, integrate=integrate, max_seconds=60))
+    res = steady(dl, Numerics(N=10, integrate=integrate, max_seconds=60))
     assert res.floquet is not None and not res.floquet.stable
     if integrate:
         assert "collocated orbit unstable" in res.message
@@ -232,12 +233,12 @@ def test_beam_offset_estimate_against_a_resolved_orbit(N, omega0, f_d, Ms):
     start, within a factor 1.5 (measured 0.89-1.32) while the offset is above 1e-8 (below, the
     estimate sits on the defect's quadrature floor and overestimates: the safe side)."""
     dl = Dimensionless.from_physical(Beam(), Drive(omega0=omega0, f_d=f_d), Effects())
-    model = DiscreteElastica(N, dl.hub_ratio, dl.eta, dl.effects)
-    fine = solve_periodic(dl, N, 65)
+    model = DiscreteElastica(dl, N)
+    fine = solve_periodic(model, 65)
     for M in Ms:
-        r = solve_periodic(dl, N, M)
+        r = solve_periodic(model, M)
         assert r.converged
-        off = beam_floquet(model, dl, r.theta, r.theta_t).fixed_point_offset()
+        off = beam_floquet(model, r.theta, r.theta_t).fixed_point_offset()
         true = np.concatenate(
             [fine.theta[:, 0] - r.theta[:, 0], fine.theta_t[:, 0] - r.theta_t[:, 0]]
         )
@@ -253,14 +254,14 @@ def test_certified_orbit_is_the_time_verified_one_and_a_failed_certificate_time_
     import rotbeam.solve.stability as stability
 
     dl = Dimensionless.from_physical(Beam(), Drive(omega0=100.0, f_d=30.0), Effects())
-    by_monodromy = steady_state(dl, Numerics(N=12))
-    by_time = steady_state(dl, Numerics(N=12, certify="time"))
+    by_monodromy = steady(dl, Numerics(N=12))
+    by_time = steady(dl, Numerics(N=12, certify="time"))
     assert by_monodromy.converged and by_time.converged
     assert "certified by the monodromy" in by_monodromy.message and by_monodromy.periods == 0
     assert "verified by one period" in by_time.message and by_time.periods == 1
     np.testing.assert_array_equal(by_monodromy.y_m, by_time.y_m)
     monkeypatch.setattr(stability, "CERTIFICATE_SAFETY", 1e12)
-    refused = steady_state(dl, Numerics(N=12))
+    refused = steady(dl, Numerics(N=12))
     assert refused.converged and refused.periods >= 1
     assert refused.message.startswith("not certified by the monodromy")
     # refined first (M -> 2M - 1 while the offset halves), then verified: the same periodic
@@ -273,8 +274,8 @@ def test_certified_orbit_is_the_time_verified_one_and_a_failed_certificate_time_
 # --- the step count: a first try with its own error estimate ------------------------------------
 def _beam_orbit(omega0: float, f_d: float, N: int = 12):
     dl = Dimensionless.from_physical(Beam(), Drive(omega0=omega0, f_d=f_d), Effects())
-    model = DiscreteElastica(N, dl.hub_ratio, dl.eta, dl.effects)
-    res = solve_periodic_adaptive(dl, N, tail_tol=1e-3)
+    model = DiscreteElastica(dl, N)
+    res = solve_periodic_adaptive(model, tail_tol=1e-3)
     assert res.converged
     return dl, model, res
 
@@ -285,8 +286,8 @@ def test_first_try_kept_on_calm_orbits_within_its_tolerance_of_converged(omega0,
     first try of FIRST_STEPS steps, and its |mu|max is within SPREAD_TOL of the same rule
     converged in the step count (16 M steps)."""
     dl, model, res = _beam_orbit(omega0, f_d)
-    fl = beam_floquet(model, dl, res.theta, res.theta_t)
-    converged = beam_floquet(model, dl, res.theta, res.theta_t, steps=16 * res.M)
+    fl = beam_floquet(model, res.theta, res.theta_t)
+    converged = beam_floquet(model, res.theta, res.theta_t, steps=16 * res.M)
     assert fl.steps == FIRST_STEPS < default_steps(res.M)
     assert fl.coarse is not None and fl.coarse.steps == FIRST_STEPS // 3
     assert abs(fl.max_abs - converged.max_abs) <= SPREAD_TOL
@@ -298,8 +299,8 @@ def test_resonant_orbit_takes_the_full_step_count():
     and its coarse product disagree, so the monodromy takes default_steps(M), as when the count
     is given, to the bit."""
     dl, model, res = _beam_orbit(5.0, 7.0)
-    fl = beam_floquet(model, dl, res.theta, res.theta_t)
-    fixed = beam_floquet(model, dl, res.theta, res.theta_t, steps=default_steps(res.M))
+    fl = beam_floquet(model, res.theta, res.theta_t)
+    fixed = beam_floquet(model, res.theta, res.theta_t, steps=default_steps(res.M))
     assert fl.steps == default_steps(res.M) > FIRST_STEPS
     assert fl.coarse is None
     np.testing.assert_array_equal(fl.monodromy, fixed.monodromy)
@@ -335,7 +336,7 @@ def test_ambiguous_certificate_is_decided_with_the_full_step_count(monkeypatch):
     import rotbeam.solve.stability as stability
 
     dl, model, res = _beam_orbit(50.0, 10.0)
-    fl = beam_floquet(model, dl, res.theta, res.theta_t)
+    fl = beam_floquet(model, res.theta, res.theta_t)
     wref = max(dl.omega, 1.0)
     first = monodromy_certificate(fl, res.theta, 1.0, wref)
     assert fl.steps == FIRST_STEPS and first.spread > 0.0
@@ -343,8 +344,8 @@ def test_ambiguous_certificate_is_decided_with_the_full_step_count(monkeypatch):
     safety = ss_tol / (first.offset + first.spread / 2)  # limit inside the spread
     monkeypatch.setattr(stability, "CERTIFICATE_SAFETY", safety)
     assert monodromy_certificate(fl, res.theta, ss_tol, wref).ambiguous
-    state, _ = certified(model, dl, Numerics(N=12, ss_tol=ss_tol), res, fl, 0.0)
-    full = beam_floquet(model, dl, res.theta, res.theta_t, steps=default_steps(res.M))
+    state, _, _ = accept_certified(model, Numerics(N=12, ss_tol=ss_tol), res, fl, 0.0)
+    full = beam_floquet(model, res.theta, res.theta_t, steps=default_steps(res.M))
     assert monodromy_certificate(full, res.theta, ss_tol, wref).certified
     assert state is not None and state.floquet.steps == default_steps(res.M)
 
@@ -357,24 +358,22 @@ def test_failed_certificate_refines_the_orbit_before_time_stepping(monkeypatch):
 
     dl = Dimensionless.from_physical(Beam(), Drive(omega0=10.0, f_d=7.0), Effects())
     num = Numerics(N=12)
-    model = DiscreteElastica(num.N, dl.hub_ratio, dl.eta, dl.effects)
+    model = DiscreteElastica(dl, num.N)
     wref = max(dl.omega, 1.0)
-    coarse = solve_periodic_adaptive(dl, num.N, tail_tol=num.tail_tol)
+    coarse = solve_periodic_adaptive(model, tail_tol=num.tail_tol)
     M = 2 * coarse.M - 1
-    finer = solve_periodic(dl, num.N, M)
+    finer = solve_periodic(model, M)
     offsets = [
-        monodromy_certificate(
-            beam_floquet(model, dl, r.theta, r.theta_t), r.theta, 1.0, wref
-        ).offset
+        monodromy_certificate(beam_floquet(model, r.theta, r.theta_t), r.theta, 1.0, wref).offset
         for r in (coarse, finer)
     ]
     assert offsets[1] < offsets[0] / 10  # the finer orbit's defect is far smaller
     limit = math.sqrt(offsets[0] * offsets[1])
     monkeypatch.setattr(stability, "CERTIFICATE_SAFETY", num.ss_tol / limit)
-    state = steady_state(dl, num)
+    state = steady(dl, num)
     assert state.converged and state.periods == 0 and state.periodic.M == M
     assert "certified by the monodromy" in state.message
     monkeypatch.undo()
-    verified = steady_state(dl, Numerics(N=12, certify="time", ss_tol=1e-7))
+    verified = steady(dl, Numerics(N=12, certify="time", ss_tol=1e-7))
     rms = [float(np.sqrt(np.mean(s.y_m**2))) for s in (state, verified)]
     assert rms[0] == pytest.approx(rms[1], rel=1e-6)

@@ -8,6 +8,7 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
+from conftest import steady
 
 from rotbeam.model.criterion import rms
 from rotbeam.model.params import Beam, Dimensionless, Drive, Effects
@@ -19,7 +20,6 @@ from rotbeam.simulate.nonlinear import (
     hysteresis,
     largest_jump,
 )
-from rotbeam.solve.steady import steady_state
 
 # a = 2 rad/s at Omega_0 = 5 rad/s on a coarse grid: the arm from below loses stability at a
 # fold near 6.85 Hz (docs/stability.md); the sweep runs across it in 0.05 Hz steps
@@ -93,7 +93,7 @@ def test_a_point_past_the_fold_is_left_by_time_stepping(arm_a3):
         dl = Dimensionless.from_physical(
             Beam(), Drive(omega0=spec.omega0, f_d=pt.p, amplitude=spec.amplitude), Effects()
         )
-        ss = steady_state(dl, num, state0=z0 * (1.0 + 1e-3))
+        ss = steady(dl, num, state0=z0 * (1.0 + 1e-3))
         assert ss.status == 0 and ss.floquet is not None and ss.floquet.stable, ss.message
         if stays:
             own = rms(pr.midspan(pt.x, pt.p))

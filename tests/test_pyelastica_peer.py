@@ -55,7 +55,7 @@ def rotbeam_rms(omega0: float, f_d: float, extension: bool):
 def orbit_start(beam: Beam, drive: pe.Drive, res):
     """start(rod): rotbeam's orbit (grid N, stretched) at the window's first sample, tau = k P."""
     scene = res.scene
-    model = DiscreteElastica.from_dimensionless(scene.dimensionless, scene.numerics.N)
+    model = DiscreteElastica(scene.dimensionless, scene.numerics.N)
     th = res.dynamic.theta
     m = th.shape[1]
     s, x, y = model.grid.full_shape(th[:, 0])

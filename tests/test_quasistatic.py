@@ -2,10 +2,12 @@
 
 import numpy as np
 import pytest
+from conftest import elastica
 
 from rotbeam.model.elastica import DiscreteElastica
 from rotbeam.model.params import Dimensionless, Effects
-from rotbeam.model.quasistatic import quasistatic_series, solve_static, solve_static_bvp
+from rotbeam.solve.quasistatic import quasistatic_series, solve_static
+from rotbeam.solve.static_bvp import solve_static_bvp
 
 
 def linear_cantilever(s, hub, lam_dot):
@@ -21,7 +23,7 @@ def test_small_euler_load_matches_linear_beam(lam_dot):
     eff = Effects(centrifugal=False)
     errs = []
     for N in (20, 40, 80):
-        m = DiscreteElastica(N, hub, 0.0, eff)
+        m = elastica(N, hub, 0.0, eff)
         res = solve_static(m, 0.0, lam_dot)
         assert res.converged
         y = m.grid.midspan(res.theta)
@@ -44,7 +46,7 @@ def test_discrete_newton_agrees_with_bvp(lam, lam_dot):
     ref_mid, ref_tip = bvp.y_at(0.5), bvp.y[-1]
     errs = []
     for N in (40, 80):
-        m = DiscreteElastica(N, hub, 0.0)
+        m = elastica(N, hub, 0.0)
         res = solve_static(m, lam, lam_dot)
         assert res.converged, res.message
         _, y = m.grid.positions(res.theta)
@@ -55,16 +57,16 @@ def test_discrete_newton_agrees_with_bvp(lam, lam_dot):
 
 def test_quasistatic_series_is_periodic_and_continuous():
     dl = Dimensionless(hub_ratio=2.875, eta=0.14, lam0=2.0, alpha=0.5, omega=1.3)
-    m = DiscreteElastica(20, dl.hub_ratio, dl.eta)
+    m = DiscreteElastica(dl, 20)
     taus = np.linspace(0, dl.period, 33)
-    th = quasistatic_series(m, dl, taus)
+    th = quasistatic_series(m, taus)
     np.testing.assert_allclose(th[:, 0], th[:, -1], atol=1e-12)
     y = m.grid.midspan(th)
     assert np.all(np.isfinite(y)) and np.ptp(y) > 0
 
 
 def test_zero_load_gives_zero_deflection():
-    m = DiscreteElastica(20, 2.875, 0.14)
+    m = elastica(20, 2.875, 0.14)
     res = solve_static(m, 5.0, 0.0)
     assert res.converged
     np.testing.assert_array_equal(res.theta, 0.0)
@@ -78,16 +80,16 @@ def test_batched_static_equals_continuation(monkeypatch, omega0, f_d, a):
     """All instants in one batched Newton give the same quasi-static series as the robust path
     (sequential continuation in time), down to Newton's tolerance: small angles (chord Newton),
     just below its 0.1 rad limit (a = 1.8: 0.09 rad), across it and large (plain Newton)."""
-    from rotbeam.model import quasistatic
     from rotbeam.simulate.scene import build_scene
+    from rotbeam.solve import quasistatic
 
     dl = build_scene({"drive": {"omega0": omega0, "f_d": f_d, "amplitude": a}}).dimensionless
-    model = DiscreteElastica(30, dl.hub_ratio, dl.eta, dl.effects)
+    model = DiscreteElastica(dl, 30)
     taus = np.arange(32) / 32 * dl.period
     lam = np.array([dl.lam(t) for t in taus])
     lam_dot = np.array([dl.lam_dot(t) for t in taus])
     fast = quasistatic.batched_static(model, lam, lam_dot)
     assert fast is not None
     monkeypatch.setattr(quasistatic, "batched_static", lambda *args, **kw: None)
-    slow = quasistatic.quasistatic_series(model, dl, taus)
+    slow = quasistatic.quasistatic_series(model, taus)
     np.testing.assert_allclose(fast.T, slow, rtol=0, atol=1e-12 * np.max(np.abs(slow)))

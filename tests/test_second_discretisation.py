@@ -16,11 +16,11 @@ sys.path.insert(0, str(Path(__file__).parent))
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 from chain_model import chain_steady_rms  # noqa: E402
+from conftest import steady  # noqa: E402
 
 from rotbeam.model.criterion import rms  # noqa: E402
 from rotbeam.model.params import Beam, Dimensionless, Drive  # noqa: E402
 from rotbeam.solve.numerics import Numerics
-from rotbeam.solve.steady import steady_state  # noqa: E402
 
 BEAM = Beam()
 
@@ -33,7 +33,7 @@ BEAM = Beam()
 )
 def test_rms_agrees_with_rigid_link_chain(omega0, f_d):
     dl = Dimensionless.from_physical(BEAM, Drive(omega0, 1.0, f_d))
-    main = steady_state(dl, Numerics(N=40))
+    main = steady(dl, Numerics(N=40))
     assert main.converged, main.message
     # Radau at rtol 1e-6 (the chain's default 1e-8 costs 5x the CPU, 470 s against 90 s for the
     # three cases, for digits far below the 2 % compared): measured chain RMS 0.010659, 0.26897,

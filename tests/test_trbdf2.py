@@ -296,17 +296,17 @@ def rotbeam_problem(N: int, start: str):
     Built as rotbeam.integrate.steady_state builds them.
     """
     dl = build_scene({"drive": {"omega0": 5, "f_d": 2}}).dimensionless
-    model = DiscreteElastica(N, dl.hub_ratio, dl.eta, dl.effects)
+    model = DiscreteElastica(dl, N)
     n = model.n
 
     def rhs(tau, z):
-        acc, _, _ = model.acceleration(z[:n], z[n:], dl.lam(tau), dl.lam_dot(tau))
+        acc = model.acceleration(z[:n], z[n:], dl.lam(tau), dl.lam_dot(tau))
         return np.concatenate([z[n:], acc])
 
     def jac(tau, z):
         return model.first_order_jacobian(z[:n], z[n:], dl.lam(tau), dl.lam_dot(tau))
 
-    z0, _ = initial_state(model, dl, start)
+    z0, _ = initial_state(model, start)
     return rhs, jac, z0, dl.period, n
 
 

@@ -13,7 +13,7 @@ A hypothesis is a set of options (`Hypothesis`):
   printed misprints (dynamic only: the paper's quasi-static answer came from bvp4c).
 * ``qs``: quasi-static response from the same discrete model ("discrete") or from the continuum
   ("continuum": Richardson limit of the discrete static problem on N = 80 and 160, which agrees
-  with `rotbeam.model.quasistatic.solve_static_bvp` to 1e-5 relative; tested).
+  with `rotbeam.solve.static_bvp.solve_static_bvp` to 1e-5 relative; tested).
 * ``s_dyn``/``N_dyn``: where and on which grid the dynamic y_m is read (QS always at s = 1/2;
   s_dyn None: node N/2 counted from the clamp as node 1, s = (N/2 - 1)/N).
 * ``measure``: "y" (rotating frame), "lab" (the drive's rigid oscillation added: a frame turning
@@ -51,7 +51,7 @@ from ..model.modes import natural_frequencies_hz
 from ..model.params import Beam, Dimensionless, Drive, Effects, omega0_for_cmax
 from ..model.surrogate import southwell_frequency_hz
 from ..simulate.sweeps import resonance_frequency_hz
-from .c_response import dynamic_response, midspan_measure, quasistatic_midspan
+from .c_response import dynamic_response, hypothesis_quasistatic_midspan, midspan_measure
 
 THRESHOLDS = (0.05, 0.07, 0.10, 0.12)
 PAPER_C = {0.05: 0.311, 0.07: 0.345, 0.10: 0.385, 0.12: 0.404}  #: App. D, +- 0.001
@@ -310,7 +310,7 @@ def scene_delta(
     y_dyn = midspan_measure(grid, theta, s_dyn, h.measure, dl, taus)
     if h.dynamics in ("steps", "steps_rest"):  # QS on a uniform grid of one period
         taus = np.arange(m) / m * dl.period
-    y_qs = quasistatic_midspan(h, dl, N, taus)
+    y_qs = hypothesis_quasistatic_midspan(h, dl, N, taus)
     r_dyn, r_qs = _rms(y_dyn, h.mean), h.qs_scale * _rms(y_qs, h.mean)
     den = r_dyn if h.denominator == "dyn" else r_qs
     return {"rms_dynamic": r_dyn, "rms_quasistatic": r_qs, "delta_rms": abs(r_dyn - r_qs) / den,

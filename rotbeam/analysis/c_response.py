@@ -15,14 +15,18 @@ from typing import Any
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from ..model.elastica import DiscreteElastica, Grid
+from ..model.base import DiscreteModel
+from ..model.elastica import DiscreteElastica
 from ..model.elastica_printed import PrintedElastica
+from ..model.grid import Grid
 from ..model.params import Dimensionless
-from ..model.quasistatic import quasistatic_series
+from ..solve.extrapolation import richardson
 from ..solve.numerics import Numerics
-from ..solve.periodic_printed import periodic_orbit
-from ..solve.spectral import trig_interpolate
-from ..solve.steady import first_order_rhs, steady_state
+from ..solve.periodic import solve_periodic
+from ..solve.quasistatic import quasistatic_series
+from ..solve.spectral import harmonic_tail, trig_interpolate
+from ..solve.steady import steady_state
+from ..solve.system import FirstOrderSystem
 
 MEASURES = ("y", "lab", "chord")
 
@@ -59,84 +63,83 @@ def continuum_quasistatic_theta(dl: Dimensionless, taus: np.ndarray, N: int = 16
     """Quasi-static Theta on grids N/2 and N: [(grid_N/2, theta_N/2), (grid_N, theta_N)]."""
     out = []
     for n in (N // 2, N):
-        model = DiscreteElastica.from_dimensionless(dl, n)
-        out.append((model.grid, quasistatic_series(model, dl, taus)))
+        model = DiscreteElastica(dl, n)
+        out.append((model.grid, quasistatic_series(model, taus)))
     return out
 
 
-def quasistatic_midspan(h: Any, dl: Dimensionless, N: int, taus: np.ndarray) -> np.ndarray:
+def hypothesis_quasistatic_midspan(
+    h: Any, dl: Dimensionless, N: int, taus: np.ndarray
+) -> np.ndarray:
     """Quasi-static y_m at s = 1/2: on the dynamic model's grid N ("discrete") or the Richardson
     limit of the static problem on N = 80 and 160 ("continuum", = bvp4c to 1e-5)."""
     if h.qs == "discrete":
-        model = DiscreteElastica.from_dimensionless(dl, N)
-        th = quasistatic_series(model, dl, taus)
+        model = DiscreteElastica(dl, N)
+        th = quasistatic_series(model, taus)
         return midspan_measure(model.grid, th, 0.5, h.measure, dl, taus)
     (g1, t1), (g2, t2) = continuum_quasistatic_theta(dl, taus)
     y1 = midspan_measure(g1, t1, 0.5, h.measure, dl, taus)
     y2 = midspan_measure(g2, t2, 0.5, h.measure, dl, taus)
-    return (4.0 * y2 - y1) / 3.0
+    return richardson(y2, y1, 2.0)
 
 
-def dynamic_model(h: Any, dl: Dimensionless, N: int) -> tuple[DiscreteElastica, Dimensionless]:
-    """The dynamic model (ours or printed) and the scene it runs (eta + 2 lam0 for the printed
+def dynamic_model(h: Any, dl: Dimensionless, N: int) -> DiscreteModel:
+    """The dynamic model (ours or printed) of the scene it runs (eta + 2 lam0 for the printed
     n_y sign with Coriolis: for small angles an extra damping 2 lam W Theta_t)."""
     eff = replace(dl, eta=dl.eta + 2.0 * abs(dl.lam0)) if h.coriolis_ny else dl
     if h.model:
-        return PrintedElastica(N, dl.hub_ratio, eff.eta, dl.effects, h.model), eff
-    return DiscreteElastica.from_dimensionless(dl, N, eff.eta), eff
+        return PrintedElastica(eff, N, h.model)
+    return DiscreteElastica(eff, N)
 
 
-def _ours_orbit(dl: Dimensionless, N: int, m: int, state: dict, guess=None):
+def _ours_orbit(model: DiscreteModel, m: int, state: dict, guess=None):
     """Our collocated orbit (steady_state without time stepping), continued along the scan."""
-    num = Numerics(N=N, integrate=False, samples_per_period=m, tail_tol=1e-5)
-    ss = steady_state(dl, num, guess=state.get("guess") if guess is None else guess)
+    num = Numerics(N=model.grid.N, integrate=False, samples_per_period=m, tail_tol=1e-5)
+    ss = steady_state(model, num, guess=state.get("guess") if guess is None else guess)
     if not ss.converged:
         raise RuntimeError(f"no periodic orbit: {ss.message}")
     state["guess"] = ss.periodic.theta.T
     return ss
 
 
-def periodic_response(h: Any, dl: Dimensionless, model: DiscreteElastica, m: int, state: dict):
+def periodic_response(h: Any, model: DiscreteModel, m: int, state: dict):
     """(Theta (n, m), taus) of the steady periodic orbit, m uniform samples of one period."""
     if not h.model:
-        ss = _ours_orbit(dl, model.grid.N, m, state)
+        ss = _ours_orbit(model, m, state)
         return ss.theta, ss.tau
-    X, ok, tail = periodic_orbit(dl, model, guess=state.get("guess"))
-    if not ok or tail > 1e-4:
-        X, ok, tail = periodic_orbit(dl, model)
-    if not ok:
+    res = solve_periodic(model, guess=state.get("guess"), maxiter=30)
+    if not res.converged or harmonic_tail(res.theta.T) > 1e-4:
+        res = solve_periodic(model, maxiter=30)
+    if not res.converged:
         raise RuntimeError("no periodic orbit of the printed model")
+    X = res.theta.T
     state["guess"] = X
-    return trig_interpolate(X, m).T, np.arange(m) / m * dl.period
+    return trig_interpolate(X, m).T, np.arange(m) / m * model.dl.period
 
 
-def _stepper(h: Any, model: DiscreteElastica, dl: Dimensionless):
+def _stepper(h: Any, model: DiscreteModel):
     """solve_ivp's method, right-hand side and exact Jacobian for a time-stepped hypothesis."""
-    n = model.n
     method = h.method
     if method == "TRBDF2":
         from ..solve.trbdf2 import TRBDF2 as method
-
-    def jac(tau, z):
-        return model.first_order_jacobian(z[:n], z[n:], dl.lam(tau), dl.lam_dot(tau))
-
-    return method, first_order_rhs(model, dl, math.inf), jac
+    system = FirstOrderSystem(model)
+    return method, system.rhs, system.jac
 
 
-def integrator_steps_response(h: Any, dl: Dimensionless, model: DiscreteElastica, state: dict):
+def integrator_steps_response(h: Any, model: DiscreteModel, state: dict):
     """(Theta, taus) at the integrator's own output steps (as ode23tb
     returns them): from the orbit ("steps": the last 2 of `step_periods` periods) or the last period
     of a run from rest ("steps_rest")."""
-    n, P = model.n, dl.period
+    n, P = model.n, model.dl.period
     if h.dynamics == "steps":
-        ss = _ours_orbit(dl, model.grid.N, 32, state)
+        ss = _ours_orbit(model, 32, state)
         z0 = np.concatenate([ss.periodic.theta[:, 0], ss.periodic.theta_t[:, 0]])
         t_end, keep = h.step_periods * P, (h.step_periods - 2) * P
     else:
         z0 = np.zeros(2 * n)
         t_end = math.ceil(h.t_end_tau / P) * P
         keep = t_end - P
-    method, rhs, jac = _stepper(h, model, dl)
+    method, rhs, jac = _stepper(h, model)
     sol = solve_ivp(rhs, (0.0, t_end), z0, method=method, rtol=h.rtol, atol=h.atol, jac=jac)
     if not sol.success:
         raise RuntimeError(f"time stepping failed: {sol.message}")
@@ -147,12 +150,12 @@ def integrator_steps_response(h: Any, dl: Dimensionless, model: DiscreteElastica
     return sol.y[:n, sel], sol.t[sel]
 
 
-def rest_response(h: Any, dl: Dimensionless, model: DiscreteElastica, m: int, T: float):
+def rest_response(h: Any, model: DiscreteModel, m: int, T: float):
     """(Theta, taus) of a run from rest: uniform samples over [0, T_end) for a window of
     ("periods", k) or ("seconds", t) [T: the time unit, s], or the last k periods of a run of
     at least `t_end_tau` for ("last", k)."""
     kind, value = h.window
-    P = dl.period
+    P = model.dl.period
     if kind == "periods":
         t_end = value * P
     elif kind == "seconds":
@@ -164,7 +167,7 @@ def rest_response(h: Any, dl: Dimensionless, model: DiscreteElastica, m: int, T:
     else:
         k = max(1, int(round(t_end / P * m)))
         taus = np.arange(k) / k * t_end
-    method, rhs, jac = _stepper(h, model, dl)
+    method, rhs, jac = _stepper(h, model)
     sol = solve_ivp(rhs, (0.0, t_end), np.zeros(2 * model.n), method=method, rtol=h.rtol,
                     atol=h.atol, jac=jac, t_eval=taus)  # fmt: skip
     if not sol.success:
@@ -174,11 +177,11 @@ def rest_response(h: Any, dl: Dimensionless, model: DiscreteElastica, m: int, T:
 
 def dynamic_response(h: Any, dl: Dimensionless, N: int, m: int, state: dict, T: float):
     """(grid, Theta (n, k), taus) of the dynamic model under hypothesis h on grid N."""
-    model, eff = dynamic_model(h, dl, N)
+    model = dynamic_model(h, dl, N)
     if h.dynamics == "periodic":
-        theta, taus = periodic_response(h, eff, model, m, state)
+        theta, taus = periodic_response(h, model, m, state)
     elif h.dynamics in ("steps", "steps_rest"):
-        theta, taus = integrator_steps_response(h, eff, model, state)
+        theta, taus = integrator_steps_response(h, model, state)
     else:
-        theta, taus = rest_response(h, eff, model, m, T)
+        theta, taus = rest_response(h, model, m, T)
     return model.grid, theta, taus

@@ -18,7 +18,7 @@ from dataclasses import replace
 import numpy as np
 import pandas as pd
 
-from ..model.elastica import centrifugal_strain
+from ..model.grid import centrifugal_strain
 from ..model.params import Beam, Dimensionless, Drive, Effects, omega0_for_cmax
 from ..simulate.scene import Scene, simulate
 from ..solve.numerics import Numerics

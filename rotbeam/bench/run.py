@@ -41,8 +41,9 @@ from ..model.elastica import DiscreteElastica
 from ..model.params import Dimensionless, Drive, Effects
 from ..model.surrogate import steady_rms
 from ..simulate.scene import Scene, quasistatic_midspan, simulate
+from ..solve.extrapolation import richardson
 from ..solve.numerics import Numerics
-from ..solve.steady import OutOfTime, first_order_rhs
+from ..solve.system import FirstOrderSystem, OutOfTime
 from .plan import CURVES, DELTA_SCALE, BenchPlan
 
 
@@ -80,15 +81,15 @@ def baseline_run(plan: BenchPlan, omega0: float, f_d: float, N: int, rtol: float
     tolerance scipy's default 1e-6, relative tolerance `rtol` (the ladder)."""
     t0 = time.perf_counter()
     dl = Dimensionless.from_physical(plan.beam, Drive(omega0, 1.0, f_d), Effects())
-    model = DiscreteElastica(N, dl.hub_ratio, dl.eta, dl.effects)
+    model = DiscreteElastica(dl, N)
     n, P, m, p = model.n, dl.period, 64, 2
     K = math.ceil(2.0 * math.log(1.0 / plan.target) / dl.eta / P)
     taus = (K + np.arange(p * m) / m) * P
-    _, y_qs = quasistatic_midspan(dl, N, taus[:m])
+    _, y_qs = quasistatic_midspan(model, taus[:m])
     atol = 1e-6  # scipy's default, as MATLAB's ode23tb: the plain port keeps it
     deadline = t0 + plan.max_seconds
 
-    rhs = first_order_rhs(model, dl, deadline)
+    rhs = FirstOrderSystem(model, deadline).rhs
 
     row = {"rms": math.nan, "delta_rms": math.nan, "converged": False, "status": 1,
            "periods": K + p, "nfev": 0, "njev": 0, "M": 0}  # fmt: skip
@@ -120,9 +121,7 @@ def reference(plan: BenchPlan, omega0: float, f_d: float) -> dict[str, Any]:
     a, b, c = plan.ref_N
 
     def rich(key: str, n1: int, n2: int) -> float:  # order 2 in 1/N
-        f1, f2 = out[f"{key}_N{n1}"], out[f"{key}_N{n2}"]
-        q = (n2 / n1) ** 2
-        return (q * f2 - f1) / (q - 1.0)
+        return richardson(out[f"{key}_N{n2}"], out[f"{key}_N{n1}"], n2 / n1)
 
     out["rms"], out["delta_rms"] = rich("rms", b, c), rich("delta", b, c)
     coarse = rich("rms", a, b)

@@ -19,7 +19,7 @@ time or together, what the printed appendix has where `rotbeam.model.elastica` d
 The fourth printed slip, +2 I y_t in the n_y integrand of Eq. (NumT), only acts with Coriolis on
 (the paper switches Coriolis off): see `rotbeam.analysis.c_hypotheses` ("printed_ny_coriolis").
 
-`rotbeam.solve.periodic_printed` collocates the periodic orbit of such a model.
+Every solver takes such a model as it takes ours (`rotbeam.model.base.DiscreteModel`).
 """
 
 from __future__ import annotations
@@ -30,23 +30,31 @@ import numpy as np
 
 from ..config.errors import RotbeamInputError
 from .elastica import DiscreteElastica
-from .params import Effects
+from .params import Dimensionless
 
 MISPRINTS = ("bracket", "U3", "symS", "Kds")
 
 
 class PrintedElastica(DiscreteElastica):
-    """`DiscreteElastica` with the printed appendix's misprints in `misprints` switched on."""
+    """`DiscreteElastica` with the printed appendix's misprints in `misprints` switched on.
 
-    def __init__(
-        self,
-        N: int,
-        hub_ratio: float,
-        eta: float,
-        effects: Effects | None = None,
-        misprints: tuple[str, ...] = (),
-    ):
-        super().__init__(N, hub_ratio, eta, effects)
+    Parameters
+    ----------
+    dl : Dimensionless
+        The scene.
+    N : int
+        Grid intervals.
+    misprints : tuple of str
+        Any of MISPRINTS.
+
+    Notes
+    -----
+    With ``symS`` the Jacobians the solvers use stay those of the derivation's antisymmetric
+    matrix: Newton converges more slowly on this model, to the same orbit.
+    """
+
+    def __init__(self, dl: Dimensionless, N: int, misprints: tuple[str, ...] = ()) -> None:
+        super().__init__(dl, N)
         bad = [m for m in misprints if m not in MISPRINTS]
         if bad:
             raise RotbeamInputError(
@@ -68,8 +76,13 @@ class PrintedElastica(DiscreteElastica):
         else:
             self.extra = np.zeros(self.n)
 
+    def at(self, dl: Dimensionless) -> PrintedElastica:
+        """The same printed variant for the scene `dl`."""
+        return PrintedElastica(dl, self.N, self.misprints)
+
     # the printed bracket adds lam^2 e to n_x and -lam_t e to n_y: torque s n_x - c n_y
     def load_torque_rows(self, theta, lam, lam_dot, jacobian=False):
+        """`DiscreteElastica.load_torque_rows` with the printed bracket's extra tension."""
         out = super().load_torque_rows(theta, lam, lam_dot, jacobian=jacobian)
         if "bracket" not in self.misprints:
             return out
@@ -87,24 +100,13 @@ class PrintedElastica(DiscreteElastica):
         J[:, idx, idx] += c * ex + s * ey
         return torque + s * ex - c * ey, J
 
-    def load_torque(self, theta, lam, lam_dot):
-        return self.load_torque_rows(theta[None], [lam], [lam_dot])[0]
-
-    def velocity_matrix(self, theta: np.ndarray) -> np.ndarray:
-        """The matrix multiplying Theta_t^2: ours (antisymmetric) or the printed symmetric one."""
-        _, B = self.mass_and_gyro(theta)
+    def velocity_matrix_rows(self, theta: np.ndarray, B: np.ndarray) -> np.ndarray:
+        """The matrix multiplying Theta_t^2: the printed symmetric W o S~ with ``symS``, else B."""
         if "symS" not in self.misprints:
             return B
-        d = theta[None, :] - theta[:, None]  # theta_j - theta_i
-        S = np.where(np.arange(self.n)[:, None] < np.arange(self.n)[None, :], np.sin(d), np.sin(-d))
-        np.fill_diagonal(S, 0.0)
-        return self.grid.W * S
-
-    def acceleration(self, theta, theta_t, lam, lam_dot):
-        acc, lu, B = super().acceleration(theta, theta_t, lam, lam_dot)
-        if "symS" in self.misprints:
-            from scipy.linalg import lu_solve
-
-            dB = self.velocity_matrix(theta) - B
-            acc = acc - lu_solve(lu, dB @ (theta_t**2), check_finite=False)
-        return acc, lu, B
+        d = theta[:, None, :] - theta[:, :, None]  # theta_j - theta_i
+        upper = np.arange(self.n)[:, None] < np.arange(self.n)[None, :]
+        S = np.where(upper[None], np.sin(d), np.sin(-d))
+        idx = np.arange(self.n)
+        S[:, idx, idx] = 0.0
+        return self.grid.W[None] * S

@@ -12,8 +12,6 @@ import math
 import numpy as np
 import pandas as pd
 
-from .elastica import DiscreteElastica
-
 
 def rotation_angle(omega0: float, amplitude: float, f_d: float, t: np.ndarray) -> np.ndarray:
     w = 2.0 * math.pi * f_d
@@ -23,7 +21,7 @@ def rotation_angle(omega0: float, amplitude: float, f_d: float, t: np.ndarray) -
 def shapes_over_period(result, frames: int | None = None) -> pd.DataFrame:
     """One row per node and frame: s, rotating-frame and lab-frame coordinates (units of L)."""
     scene = result.scene
-    grid = DiscreteElastica.from_dimensionless(scene.dimensionless, scene.numerics.N).grid
+    grid = scene.model().grid
     r_o = scene.beam.hub_ratio
     d = scene.drive
     rows = []

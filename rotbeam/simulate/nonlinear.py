@@ -23,6 +23,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..model.criterion import rms
+from ..model.elastica import DiscreteElastica
 from ..model.params import Beam, Dimensionless, Drive, Effects
 from ..solve.beam_branch import BeamBranch, beam_branch
 from ..solve.continuation import Branch
@@ -172,7 +173,8 @@ def follow_sweep(
         dl = Dimensionless.from_physical(
             beam, Drive(omega0=spec.omega0, f_d=float(f), amplitude=spec.amplitude), effects
         )
-        ss = steady_state(dl, num, state0=state, guess=guess if state is None else None)
+        model = DiscreteElastica(dl, num.N)
+        ss = steady_state(model, num, state0=state, guess=guess if state is None else None)
         state = ss.state if ss.state is not None else state
         rows.append(
             {"amplitude": spec.amplitude, "kind": "sweep", "arm": sweep, "N": spec.N,

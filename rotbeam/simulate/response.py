@@ -30,10 +30,10 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from ..model.elastica import DiscreteElastica
+from ..model.base import DiscreteModel
 from ..solve.lyapunov import largest_lyapunov
-from ..solve.steady import first_order_rhs, initial_state
-from .scene import Scene
+from ..solve.steady import initial_state
+from ..solve.system import FirstOrderSystem
 
 RESPONSES = ("periodic", "subharmonic", "quasiperiodic", "chaotic")
 #: stepper tolerance of the classification run.  At a = 3 rad/s, 7 Hz (N = 6, chaotic) the
@@ -118,17 +118,6 @@ def _transient(rhs, jac, z, P, periods, rtol, atol, deadline, progress, total):
     return z, done, ""
 
 
-def _midspan_rate(model: DiscreteElastica, theta: np.ndarray, theta_t: np.ndarray) -> np.ndarray:
-    """dy_m/dtau from Theta, Theta_t (n, K), as `Grid.midspan` interpolates y."""
-    g = model.grid
-    yt = g.P @ (np.cos(theta) * theta_t)
-    if g.mid >= 0:
-        return yt[g.mid]
-    i = g.N // 2
-    w = 0.5 * g.N - i
-    return (1 - w) * yt[i - 1] + w * yt[i]
-
-
 def _spectrum(y: np.ndarray, dt: float) -> tuple[np.ndarray, np.ndarray, list]:
     """Hann-windowed amplitude spectrum of y and its five largest peaks [Hz]."""
     yw = (y - y.mean()) * np.hanning(y.size)
@@ -140,10 +129,10 @@ def _spectrum(y: np.ndarray, dt: float) -> tuple[np.ndarray, np.ndarray, list]:
 
 
 def response_of(
-    scene: Scene,
+    model: DiscreteModel,
+    time_scale: float,
     transient_periods: int = 100,
     section_periods: int = 100,
-    N: int | None = None,
     max_seconds: float = 1800.0,
     rtol: float = RTOL,
     tol: float = 1e-3,
@@ -160,18 +149,13 @@ def response_of(
     if start not in ("quasistatic", "rest", "linear"):
         raise ValueError(f"start must be quasistatic, rest or linear, got {start!r}")
     t0 = time.perf_counter()
-    N = N or scene.numerics.N
-    dl = scene.dimensionless
-    model = DiscreteElastica.from_dimensionless(dl, N)
-    n, P, T = model.n, dl.period, scene.beam.T
+    dl, N = model.dl, model.grid.N
+    n, P, T = model.n, dl.period, time_scale
     deadline = t0 + max_seconds
-    rhs = first_order_rhs(model, dl, math.inf)  # the budget is checked between periods
-
-    def jac(t, z):
-        return model.first_order_jacobian(z[:n], z[n:], dl.lam(t), dl.lam_dot(t))
-
-    qs, _ = initial_state(model, dl, "quasistatic")  # the tolerances' scale, also from rest
-    z = qs if start == "quasistatic" else initial_state(model, dl, start)[0]
+    system = FirstOrderSystem(model)  # the budget is checked between periods
+    rhs, jac = system.rhs, system.jac
+    qs, _ = initial_state(model, "quasistatic")  # the tolerances' scale, also from rest
+    z = qs if start == "quasistatic" else initial_state(model, start)[0]
     atol = _atol(qs[:n], rtol, dl.omega)
     total = transient_periods + section_periods
     share = t0 + max_seconds * transient_periods / total
@@ -208,7 +192,7 @@ def _atol(theta_qs: np.ndarray, rtol: float, omega: float) -> np.ndarray:
                            np.full(n, 1e-3 * rtol * scale * omega)])  # fmt: skip
 
 
-def _classified(model: DiscreteElastica, T: float, P: float, ly, tol: float) -> dict:
+def _classified(model: DiscreteModel, T: float, P: float, ly, tol: float) -> dict:
     """What a time-stepped section (`largest_lyapunov`'s result) says: its class, Poincare
     section in y_m, spectrum and exponent (the ResponseResult fields but the run's account)."""
     n = model.n
@@ -220,7 +204,7 @@ def _classified(model: DiscreteElastica, T: float, P: float, ly, tol: float) -> 
     response, q = classify(dist, lam * P, spread * P, tol)
     theta_s = sec[:, :n].T
     y_sec = np.atleast_1d(model.grid.midspan(theta_s))
-    yt_sec = _midspan_rate(model, theta_s, sec[:, n:].T) / T
+    yt_sec = np.atleast_1d(model.grid.midspan_rate(theta_s, sec[:, n:].T)) / T
     theta_all = np.concatenate(ly.samples, axis=1) if ly.samples else theta_s
     y_all = np.atleast_1d(model.grid.midspan(theta_all[:n]))
     f, amp, peaks = _spectrum(y_all, P * T / SAMPLES)

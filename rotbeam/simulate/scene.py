@@ -16,11 +16,13 @@ from typing import Any
 import numpy as np
 
 from ..config.scenefile import scene_sections
+from ..model.base import DiscreteModel
 from ..model.criterion import delta_rms, rms
 from ..model.elastica import DiscreteElastica
 from ..model.params import Beam, Dimensionless, Drive, Effects, check_model_range, drive_groups
-from ..model.quasistatic import quasistatic_series
+from ..solve.extrapolation import richardson
 from ..solve.numerics import Numerics
+from ..solve.quasistatic import quasistatic_series
 from ..solve.steady import SteadyState, steady_state
 
 CLASSES = {"beam": Beam, "drive": Drive, "effects": Effects, "numerics": Numerics}
@@ -35,7 +37,12 @@ class Scene:
 
     @property
     def dimensionless(self) -> Dimensionless:
+        """The scene's dimensionless problem (groups, effects, drive)."""
         return Dimensionless.from_physical(self.beam, self.drive, self.effects)
+
+    def model(self, N: int | None = None) -> DiscreteModel:
+        """The discrete model of the scene on N grid intervals (default numerics.N)."""
+        return DiscreteElastica(self.dimensionless, self.numerics.N if N is None else N)
 
 
 def build_scene(spec: dict[str, Any] | None = None) -> Scene:
@@ -113,12 +120,10 @@ def stability_columns(dyn: SteadyState) -> dict[str, Any]:
             "stable": bool(fl.stable) if fl is not None else None}  # fmt: skip
 
 
-def quasistatic_midspan(
-    dl: Dimensionless, N: int, taus: np.ndarray
-) -> tuple[np.ndarray, np.ndarray]:
-    model = DiscreteElastica.from_dimensionless(dl, N)
-    theta = quasistatic_series(model, dl, taus)
-    return theta, np.atleast_1d(model.grid.midspan(theta))
+def quasistatic_midspan(model: DiscreteModel, taus: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The quasi-static angles (n, m) and y_m / L (m,) of the model at the instants `taus`."""
+    theta = quasistatic_series(model, taus)
+    return theta, np.atleast_1d(model.midspan(theta))
 
 
 #: Richardson extrapolation is skipped when the two grids differ by more than this (relative):
@@ -151,7 +156,6 @@ def simulate(
         None,
         coarse_guess,
     )
-    q = (num.N / Nc) ** 2
     info = {"N_coarse": Nc, "rms_dynamic_N": fine.rms_dynamic,
             "rms_dynamic_coarse": coarse.rms_dynamic, "rms_quasistatic_N": fine.rms_quasistatic,
             "rms_quasistatic_coarse": coarse.rms_quasistatic,
@@ -160,7 +164,7 @@ def simulate(
     change = max(abs(f - c) / abs(f) if f else abs(c) for f, c in pairs)
     ok = fine.converged and coarse.converged and math.isfinite(change)
     if ok and change <= EXTRAPOLATION_MAX_CHANGE:
-        r_dyn, r_qs = ((q * f - c) / (q - 1.0) for f, c in pairs)
+        r_dyn, r_qs = (richardson(f, c, num.N / Nc) for f, c in pairs)
         info["extrapolated"] = True
     else:
         r_dyn, r_qs = fine.rms_dynamic, fine.rms_quasistatic
@@ -183,14 +187,15 @@ def _simulate_grid(
     guess: np.ndarray | None = None,
 ) -> SceneResult:
     t0 = time.perf_counter()
-    dl = scene.dimensionless
     num = scene.numerics
+    model = scene.model()
+    dl = model.dl
     # quasi-static first: it is cheap, sets the response scale and the tolerances' size
     m = num.samples_per_period
     taus_one = np.arange(m) / m * dl.period
-    th_qs1, y_qs1 = quasistatic_midspan(dl, num.N, taus_one)
+    th_qs1, y_qs1 = quasistatic_midspan(model, taus_one)
     scale = float(np.max(np.abs(th_qs1))) if th_qs1.size else 0.0
-    dyn = steady_state(dl, num, progress=progress, response_scale=scale or None, guess=guess)
+    dyn = steady_state(model, num, progress=progress, response_scale=scale or None, guess=guess)
     # the quasi-static response has the drive's period: reuse the one-period solve when the
     # window's instants fall on its phases (they do, but for a failed run's last sample)
     phase = (dyn.tau / dl.period) % 1.0 * m
@@ -198,7 +203,7 @@ def _simulate_grid(
     if np.allclose(phase, np.rint(phase), atol=1e-6):
         theta_qs, y_qs = th_qs1[:, idx], np.atleast_1d(y_qs1)[idx]
     else:
-        theta_qs, y_qs = quasistatic_midspan(dl, num.N, dyn.tau)
+        theta_qs, y_qs = quasistatic_midspan(model, dyn.tau)
     r_dyn = rms(dyn.y_m)
     r_qs = rms(y_qs)
     if not math.isfinite(r_dyn):

@@ -15,11 +15,14 @@ derivative V = D Theta.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+import math
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
+from ..model.base import DiscreteModel
 from ..model.criterion import rms
+from ..model.elastica import DiscreteElastica
 from ..model.params import Beam, Dimensionless, Drive, Effects
 from .continuation import Branch, BranchProblem, continue_branch
 from .floquet import FloquetResult, beam_floquet
@@ -29,19 +32,17 @@ from .spectral import trig_interpolate
 
 @dataclass
 class BeamBranchProblem(BranchProblem):
-    """Collocated orbits of one beam, mean speed and drive amplitude, parameter p = f_d [Hz]."""
+    """Collocated orbits of one model, parameter p = f_d [Hz]: every number of the scene but the
+    drive frequency stays fixed in physical units."""
 
-    beam: Beam
-    omega0: float  #: mean angular velocity Omega_0 [rad/s]
-    amplitude: float  #: drive amplitude a [rad/s]
-    effects: Effects
-    N: int  #: grid intervals
+    model: DiscreteModel  #: the model at any f_d (its drive's frequency is replaced by p)
+    T: float  #: time scale of the beam [s]: omega = 2 pi p T
     M: int  #: collocation instants (odd), fixed along the branch
     _cols: dict = field(default_factory=dict, repr=False)
 
     def dimensionless(self, f_d: float) -> Dimensionless:
-        drive = Drive(omega0=self.omega0, f_d=float(f_d), amplitude=self.amplitude)
-        return Dimensionless.from_physical(self.beam, drive, self.effects)
+        """The scene at drive frequency f_d [Hz]."""
+        return replace(self.model.dl, omega=2.0 * math.pi * float(f_d) * self.T)
 
     def collocation(self, f_d: float) -> Collocation:
         """The collocation at f_d (the last few kept: residual, Jacobian and dR/dp reuse them)."""
@@ -50,11 +51,11 @@ class BeamBranchProblem(BranchProblem):
         if col is None:
             if len(self._cols) >= 4:
                 self._cols.pop(next(iter(self._cols)))
-            col = self._cols[key] = Collocation(self.dimensionless(key), self.N, self.M)
+            col = self._cols[key] = Collocation(self.model.at(self.dimensionless(key)), self.M)
         return col
 
     def _X(self, x: np.ndarray) -> np.ndarray:
-        return np.asarray(x, dtype=float).reshape(self.M, self.N - 1)
+        return np.asarray(x, dtype=float).reshape(self.M, self.model.n)
 
     def residual(self, x: np.ndarray, p: float) -> np.ndarray:
         return self.collocation(p).residual(self._X(x)).ravel()
@@ -66,12 +67,12 @@ class BeamBranchProblem(BranchProblem):
     def floquet(self, x: np.ndarray, p: float) -> FloquetResult:
         col = self.collocation(p)
         X = self._X(x)
-        return beam_floquet(col.model, col.dl, X.T, (col.D @ X).T)
+        return beam_floquet(col.model, X.T, (col.D @ X).T)
 
     def midspan(self, x: np.ndarray, p: float, samples: int = 64) -> np.ndarray:
         """y_m / L over one period at `samples` equispaced instants (trigonometric interpolant)."""
         col = self.collocation(p)
-        return np.atleast_1d(col.model.grid.midspan(trig_interpolate(self._X(x), samples).T))
+        return np.atleast_1d(col.model.midspan(trig_interpolate(self._X(x), samples).T))
 
 
 @dataclass
@@ -113,10 +114,11 @@ def start_orbit(
     dl = Dimensionless.from_physical(
         beam, Drive(omega0=omega0, f_d=f_d, amplitude=amplitude), effects
     )
-    res = solve_periodic_adaptive(dl, N, M0=M0, tail_tol=tail_tol, M_max=M_max)
+    model = DiscreteElastica(dl, N)
+    res = solve_periodic_adaptive(model, M0=M0, tail_tol=tail_tol, M_max=M_max)
     if not res.converged:
         raise RuntimeError(f"no periodic orbit at f_d = {f_d:g} Hz to start from: {res.message}")
-    problem = BeamBranchProblem(beam, omega0, amplitude, effects, N, res.M)
+    problem = BeamBranchProblem(model, beam.T, res.M)
     return problem, res.theta.T.ravel(), res.harmonic_tail
 
 

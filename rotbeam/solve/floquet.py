@@ -49,8 +49,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.linalg as sla
 
-from ..model.elastica import DiscreteElastica
-from ..model.params import Dimensionless
+from ..model.base import DiscreteModel
 
 #: an orbit counts as stable when its largest |mu| is below 1 - STABLE_MARGIN: the monodromy is
 #: accurate to ~1e-6 here (tests), far below the margins the verdicts rest on
@@ -266,8 +265,7 @@ def orbit_floquet(
 
 
 def beam_floquet(
-    model: DiscreteElastica,
-    dl: Dimensionless,
+    model: DiscreteModel,
     theta: np.ndarray,
     theta_t: np.ndarray,
     steps: int | None = None,
@@ -275,23 +273,23 @@ def beam_floquet(
     """Multipliers of the beam's orbit sampled at M equispaced instants of the drive period,
     theta and theta_t (n, M), with the model's exact Jacobians (`first_order_rows`, all steps
     in one batch), and the orbit's one-period defect."""
-    n = model.n
+    n, dl = model.n, model.dl
 
     def rows(t: np.ndarray, Z: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        lam = [dl.lam(tk) for tk in t]
-        return model.first_order_rows(Z[:, :n], Z[:, n:], lam, [dl.lam_dot(tk) for tk in t])
+        lam, lam_dot = model.drive_rows(t)
+        return model.first_order_rows(Z[:, :n], Z[:, n:], lam, lam_dot)
 
     Z = np.concatenate([theta, theta_t], axis=0).T
     return orbit_floquet(None, Z, dl.period, steps, rows=rows)
 
 
 def sampled_beam_floquet(
-    model: DiscreteElastica, dl: Dimensionless, theta: np.ndarray, steps: int | None = None
+    model: DiscreteModel, theta: np.ndarray, steps: int | None = None
 ) -> FloquetResult:
     """Multipliers of a time-stepped periodic orbit from its angles at m equispaced instants of
     one period (n, m); the velocities are the samples' spectral derivative."""
-    X = theta.T
+    X, dl = theta.T, model.dl
     if X.shape[0] % 2 == 0:  # an odd count: no Nyquist term, whose derivative is undefined
         X = trig_eval(X, dl.period, np.arange(X.shape[0] + 1) * dl.period / (X.shape[0] + 1))
     V = trig_eval(X, dl.period, np.arange(X.shape[0]) * dl.period / X.shape[0], derivative=1)
-    return beam_floquet(model, dl, X.T, V.T, steps)
+    return beam_floquet(model, X.T, V.T, steps)

@@ -19,14 +19,14 @@ holds, so an unstable or wrong orbit is left behind rather than reported.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 import scipy.linalg as sla
 
-from ..model.elastica import DiscreteElastica
+from ..model.base import DiscreteModel
 from ..model.modes import linear_forced_response
-from ..model.params import Dimensionless
+from .newton import newton
 from .spectral import fourier_diff_matrix, harmonic_tail, trig_interpolate
 
 
@@ -47,15 +47,14 @@ class PeriodicResult:
 class Collocation:
     """Residual and Jacobian of the collocated periodic problem for one scene and grid."""
 
-    def __init__(self, dl: Dimensionless, N: int, M: int):
-        self.dl = dl
-        self.model = DiscreteElastica.from_dimensionless(dl, N)
+    def __init__(self, model: DiscreteModel, M: int):
+        self.model = model
+        self.dl = dl = model.dl
         self.M = M
         self.tau = np.arange(M) * dl.period / M
         self.D = fourier_diff_matrix(M, dl.period)
         self.D2 = self.D @ self.D
-        self.lam = np.array([dl.lam(t) for t in self.tau])
-        self.lam_dot = np.array([dl.lam_dot(t) for t in self.tau])
+        self.lam, self.lam_dot = model.drive_rows(self.tau)
         self._cache: tuple | None = None
 
     def _mass_gyro(self, X):
@@ -78,17 +77,20 @@ class Collocation:
         v = V * V
         if self.model.effects.coriolis:
             v = v + 2.0 * self.lam[:, None] * V
-        st = (V, A, Mm, Bm, v)
+        S = self.model.velocity_matrix_rows(X, Bm)
+        st = (V, A, Mm, Bm, v, S)
         self._cache = (X, st)
         return st
 
     def residual(self, X: np.ndarray) -> np.ndarray:
         """X: (M, n) -> R (M, n)."""
         m = self.model
-        V, A, Mm, Bm, v = self._state(X)
+        V, A, Mm, Bm, v, S = self._state(X)
         a = A + m.eta * V
-        R = np.einsum("jik,jk->ji", Mm, a) + np.einsum("jik,jk->ji", Bm, v) + X @ m.grid.K.T
+        R = np.einsum("jik,jk->ji", Mm, a) + np.einsum("jik,jk->ji", Bm, v) + X @ m.stiffness.T
         R += m.load_torque_rows(X, self.lam, self.lam_dot)
+        if S is not Bm:  # a model whose squared rates carry another matrix than B
+            R += np.einsum("jik,jk->ji", S - Bm, V * V)
         return R
 
     def jacobian_blocks(self, X: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -96,7 +98,7 @@ class Collocation:
         (reusing the residual's work when X was its last argument)."""
         m = self.model
         n = m.n
-        V, A, Mm, Bm, v = self._state(X)
+        V, A, Mm, Bm, v, _ = self._state(X)
         a = A + m.eta * V
         Ba = np.einsum("jik,jk->ji", Bm, a)
         Mv = np.einsum("jik,jk->ji", Mm, v)
@@ -105,7 +107,7 @@ class Collocation:
             dv = dv + 2.0 * self.lam[:, None]
         Cj = m.eta * Mm + Bm * dv[:, None, :]
         _, Lj = m.load_torque_rows(X, self.lam, self.lam_dot, jacobian=True)
-        Lj += m.grid.K[None] + Bm * a[:, None, :] - Mm * v[:, None, :]
+        Lj += m.stiffness[None] + Bm * a[:, None, :] - Mm * v[:, None, :]
         idx = np.arange(n)
         Lj[:, idx, idx] += Mv - Ba
         return Lj, Cj, Mm
@@ -188,92 +190,98 @@ def _newton_step(col: Collocation, blocks, R: np.ndarray, linear: str, inv=None)
     return x.reshape(shape), count[0], inv
 
 
-def linear_guess(dl: Dimensionless, N: int, tau: np.ndarray) -> np.ndarray:
-    amp, _ = linear_forced_response(dl, N)
-    return np.real(amp[None, :] * np.exp(1j * dl.omega * tau)[:, None])
+class _NewtonDirections:
+    """The Newton steps of one solve: `_newton_step` with the preconditioner kept between steps
+    (rebuilt when GMRES needs more than twice the iterations of its first use) and the GMRES
+    iterations counted."""
+
+    def __init__(self, col: Collocation, linear: str) -> None:
+        self.col, self.linear = col, linear
+        self.inv = None
+        self.first_krylov = self.krylov_iterations = 0
+
+    def __call__(self, X: np.ndarray, R: np.ndarray) -> np.ndarray:
+        blocks = self.col.jacobian_blocks(X)
+        step, krylov, self.inv = _newton_step(self.col, blocks, R, self.linear, self.inv)
+        self.krylov_iterations += krylov
+        if krylov > 2 * max(self.first_krylov, 5):
+            self.inv = None  # the preconditioner went stale: rebuild it at the next step
+        self.first_krylov = self.first_krylov or krylov
+        return step
 
 
-def _line_search(
-    col: Collocation, X: np.ndarray, step: np.ndarray, rn: float
-) -> tuple[float, np.ndarray, np.ndarray, float]:
-    """Halve the Newton step until the residual's max-norm falls below rn (or t < 1e-3); returns
-    (t, X + t step, its residual, its max-norm)."""
-    t = 1.0
-    while True:
-        Xt = X + t * step
-        Rt = col.residual(Xt)
-        rt = float(np.max(np.abs(Rt)))
-        if np.isfinite(rt) and (rt < rn or t < 1e-3):
-            return t, Xt, Rt, rt
-        t *= 0.5
+def linear_guess(model: DiscreteModel, tau: np.ndarray) -> np.ndarray:
+    """The linearised model's harmonic response at the instants `tau`, shape (len(tau), n): the
+    start of Newton without a neighbouring orbit."""
+    amp, _ = linear_forced_response(model)
+    return np.real(amp[None, :] * np.exp(1j * model.dl.omega * tau)[:, None])
 
 
 def solve_periodic(
-    dl: Dimensionless,
-    N: int = 40,
+    model: DiscreteModel,
     M: int = 33,
     guess: np.ndarray | None = None,
     rtol: float = 1e-10,
     maxiter: int = 40,
     linear: str = "auto",
 ) -> PeriodicResult:
-    """Newton on the collocated periodic problem; `guess` is (M, N-1) or None (linear guess).
+    """The periodic orbit of `model` collocated at M instants, by Newton.
 
-    `linear` solves the Newton systems: "dense" (LU of the (M n)^2 Jacobian), "krylov" (GMRES,
-    matrix-free, preconditioned by the time-averaged Jacobian) or "auto" (dense when M n is small).
+    Parameters
+    ----------
+    model : DiscreteModel
+        The model and its drive (the orbit has the drive's period).
+    M : int
+        Collocation instants, odd.
+    guess : numpy.ndarray or None
+        Start (M, n); None: the linearised response (`linear_guess`).
+    rtol : float
+        Newton's relative step tolerance.
+    maxiter : int
+        Most Newton steps.
+    linear : str
+        How the Newton systems are solved: "dense" (LU of the (M n)^2 Jacobian), "krylov"
+        (GMRES, matrix-free, preconditioned by the time-averaged Jacobian) or "auto" (dense
+        when M n is small).
+
+    Returns
+    -------
+    PeriodicResult
     """
     if linear not in LINEAR_SOLVERS:
         raise ValueError(f"linear must be one of {LINEAR_SOLVERS}, got {linear!r}")
-    gmres_iterations = first_krylov = 0
-    inv = None
-    col = Collocation(dl, N, M)
-    X = linear_guess(dl, N, col.tau) if guess is None else np.array(guess, dtype=float)
-    R = col.residual(X)
-    rn = float(np.max(np.abs(R)))
-    it = 0
-    converged = rn == 0.0
-    msg = "exact" if converged else "no convergence"
-    while not converged and it < maxiter:
-        it += 1
-        blocks = col.jacobian_blocks(X)
-        try:
-            step, krylov, inv = _newton_step(col, blocks, R, linear, inv)
-        except (np.linalg.LinAlgError, ValueError):
-            msg = "singular collocation Jacobian"
-            break
-        gmres_iterations += krylov
-        if krylov > 2 * max(first_krylov, 5):
-            inv = None  # the preconditioner went stale: rebuild it at the next step
-        first_krylov = first_krylov or krylov
-        t, X, R, rn = _line_search(col, X, step, rn)
-        if not np.isfinite(rn):
-            msg = "residual not finite"
-            break
-        scale = max(float(np.max(np.abs(X))), 1e-300)
-        if float(np.max(np.abs(t * step))) <= rtol * scale:
-            converged, msg = True, f"converged in {it} iterations"
-    V = col.D @ X
+    col = Collocation(model, M)
+    X = linear_guess(model, col.tau) if guess is None else np.array(guess, dtype=float)
+    directions = _NewtonDirections(col, linear)
+    res = newton(col.residual, directions, X, rtol, maxiter)
+    message = "singular collocation Jacobian" if res.message == "singular Jacobian" else res.message
     return PeriodicResult(
         tau=col.tau,
-        theta=X.T.copy(),
-        theta_t=V.T.copy(),
-        converged=converged,
-        iterations=it,
-        krylov_iterations=gmres_iterations,
-        residual=rn,
-        harmonic_tail=harmonic_tail(X),
+        theta=res.x.T.copy(),
+        theta_t=(col.D @ res.x).T.copy(),
+        converged=res.converged,
+        iterations=res.iterations,
+        krylov_iterations=directions.krylov_iterations,
+        residual=res.norm,
+        harmonic_tail=harmonic_tail(res.x),
         M=M,
-        message=msg,
+        message=message,
     )
 
 
-def _amplitude_continuation(dl: Dimensionless, N: int, M: int, rtol: float, steps: int = 6):
-    """Follow the orbit from a small drive amplitude up to the real one (large responses)."""
-    from dataclasses import replace
+def refined(model: DiscreteModel, res: PeriodicResult, rtol: float = 1e-10) -> PeriodicResult:
+    """The orbit `res` solved again on 2M - 1 instants, from its trigonometric interpolant."""
+    M = 2 * res.M - 1
+    return solve_periodic(model, M, guess=trig_interpolate(res.theta.T, M), rtol=rtol)
 
+
+def _amplitude_continuation(model: DiscreteModel, M: int, rtol: float, steps: int = 6):
+    """Follow the orbit from a small drive amplitude up to the real one (large responses)."""
+    dl = model.dl
     X = None
     for k in range(1, steps + 1):
-        res = solve_periodic(replace(dl, alpha=dl.alpha * k / steps), N, M, guess=X, rtol=rtol)
+        scaled = model.at(replace(dl, alpha=dl.alpha * k / steps))
+        res = solve_periodic(scaled, M, guess=X, rtol=rtol)
         if not res.converged:
             return None
         X = res.theta.T
@@ -282,17 +290,34 @@ def _amplitude_continuation(dl: Dimensionless, N: int, M: int, rtol: float, step
 
 
 def solve_periodic_adaptive(
-    dl: Dimensionless,
-    N: int = 40,
+    model: DiscreteModel,
     M0: int = 17,
     tail_tol: float = 1e-5,
     M_max: int = 129,
     rtol: float = 1e-10,
     guess: np.ndarray | None = None,
 ) -> PeriodicResult:
-    """`solve_periodic` with M doubled (2M - 1) until the harmonic tail is below `tail_tol`.
+    """`solve_periodic` with M refined (2M - 1) until the harmonic tail is below `tail_tol`.
 
-    `guess` (M', N-1) from a neighbouring scene (continuation) is resampled to M points.
+    Parameters
+    ----------
+    model : DiscreteModel
+        The model and its drive.
+    M0 : int
+        First number of instants (made odd).
+    tail_tol : float
+        Harmonic tail to reach.
+    M_max : int
+        Finest M.
+    rtol : float
+        Newton's relative step tolerance.
+    guess : numpy.ndarray or None
+        An orbit (M', n) of a neighbouring scene (continuation), resampled to M instants; when
+        Newton fails from it, from the linear guess, then by continuation in the amplitude.
+
+    Returns
+    -------
+    PeriodicResult
     """
     M = M0 if M0 % 2 else M0 + 1
     if guess is not None:
@@ -300,15 +325,13 @@ def solve_periodic_adaptive(
         M = max(M, guess.shape[0] if guess.shape[0] % 2 else guess.shape[0] + 1)
         if guess.shape[0] != M:
             guess = trig_interpolate(guess, M)
-    res = solve_periodic(dl, N, M, guess=guess, rtol=rtol)
+    res = solve_periodic(model, M, guess=guess, rtol=rtol)
     if not res.converged and guess is not None:
-        res = solve_periodic(dl, N, M, rtol=rtol)
+        res = solve_periodic(model, M, rtol=rtol)
     if not res.converged:
-        res = _amplitude_continuation(dl, N, M, rtol) or res
-    while res.converged and res.harmonic_tail > tail_tol and 2 * M - 1 <= M_max:
-        guess = trig_interpolate(res.theta.T, 2 * M - 1)
-        M = 2 * M - 1
-        res = solve_periodic(dl, N, M, guess=guess, rtol=rtol)
+        res = _amplitude_continuation(model, M, rtol) or res
+    while res.converged and res.harmonic_tail > tail_tol and 2 * res.M - 1 <= M_max:
+        res = refined(model, res, rtol)
     if res.converged and res.harmonic_tail > tail_tol:
-        res.message += f"; harmonic tail {res.harmonic_tail:.2g} > {tail_tol:g} at M={M}"
+        res.message += f"; harmonic tail {res.harmonic_tail:.2g} > {tail_tol:g} at M={res.M}"
     return res

@@ -18,8 +18,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..model.elastica import DiscreteElastica
-from ..model.params import Dimensionless
+from ..model.base import DiscreteModel
 from .floquet import FloquetResult, beam_floquet, sampled_beam_floquet
 from .periodic import PeriodicResult
 
@@ -37,8 +36,7 @@ STATUS_UNSTABLE = 2
 
 
 def orbit_stability(
-    model: DiscreteElastica,
-    dl: Dimensionless,
+    model: DiscreteModel,
     periodic: PeriodicResult | None,
     steps: int | None = None,
 ) -> FloquetResult | None:
@@ -46,7 +44,7 @@ def orbit_stability(
     `rotbeam.solve.floquet.orbit_floquet`)."""
     if periodic is None or not periodic.converged:
         return None
-    return beam_floquet(model, dl, periodic.theta, periodic.theta_t, steps)
+    return beam_floquet(model, periodic.theta, periodic.theta_t, steps)
 
 
 def leave_orbit(z: np.ndarray, fl: FloquetResult, size: float) -> np.ndarray:
@@ -60,13 +58,11 @@ def leave_orbit(z: np.ndarray, fl: FloquetResult, size: float) -> np.ndarray:
     return z + LEAVE_FRACTION * max(size, 1e-12) * v
 
 
-def window_stability(
-    model: DiscreteElastica, dl: Dimensionless, theta_one_period: np.ndarray
-) -> FloquetResult | None:
+def window_stability(model: DiscreteModel, theta_one_period: np.ndarray) -> FloquetResult | None:
     """Multipliers of a time-stepped steady orbit from one period of its samples (n, m)."""
     if theta_one_period.ndim != 2 or theta_one_period.shape[1] < 8:
         return None
-    return sampled_beam_floquet(model, dl, theta_one_period)
+    return sampled_beam_floquet(model, theta_one_period)
 
 
 @dataclass(frozen=True)

@@ -43,13 +43,13 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..model.elastica import DiscreteElastica
+from ..model.base import DiscreteModel
 from ..model.modes import dimensionless_frequencies, linear_forced_response
 from ..model.params import Dimensionless
-from ..model.quasistatic import quasistatic_series
 from .floquet import FloquetResult, default_steps
 from .numerics import Numerics
-from .periodic import PeriodicResult, solve_periodic, solve_periodic_adaptive
+from .periodic import PeriodicResult, refined, solve_periodic_adaptive
+from .quasistatic import quasistatic_series
 from .spectral import trig_interpolate
 from .stability import (
     STATUS_UNSTABLE,
@@ -60,10 +60,7 @@ from .stability import (
     stability_note,
     window_stability,
 )
-
-
-class OutOfTime(Exception):
-    """Raised inside the right-hand side when the wall-time budget is spent."""
+from .system import FirstOrderSystem, OutOfTime
 
 
 @dataclass
@@ -95,46 +92,44 @@ def period_samples(dl: Dimensionless, k0: int, periods: int, m: int) -> np.ndarr
 
 
 def initial_state(
-    model: DiscreteElastica,
-    dl: Dimensionless,
+    model: DiscreteModel,
     start: str,
     tail_tol: float = 1e-3,
     guess: np.ndarray | None = None,
 ) -> tuple[np.ndarray, PeriodicResult | None]:
     """Initial state (Theta, Theta_t) at tau = 0, and the collocation result if one was made."""
-    n = model.n
+    n, dl = model.n, model.dl
     if start == "rest":
         return np.zeros(2 * n), None
     if start == "periodic":
-        res = solve_periodic_adaptive(dl, model.grid.N, tail_tol=tail_tol, guess=guess)
+        res = solve_periodic_adaptive(model, tail_tol=tail_tol, guess=guess)
         if res.converged:
             return np.concatenate([res.theta[:, 0], res.theta_t[:, 0]]), res
         start = "quasistatic"  # fall back to a physical state; the time stepping still decides
     if start == "linear":
-        amp, _ = linear_forced_response(dl, model.grid.N)
+        amp, _ = linear_forced_response(model)
         return np.concatenate([amp.real, -dl.omega * amp.imag]), None
     h = dl.period * 1e-4
-    th = quasistatic_series(model, dl, np.array([-h, 0.0, h]))
+    th = quasistatic_series(model, np.array([-h, 0.0, h]))
     return np.concatenate([th[:, 1], (th[:, 2] - th[:, 0]) / (2 * h)]), None
 
 
 def starting_state(
-    model: DiscreteElastica,
-    dl: Dimensionless,
+    model: DiscreteModel,
     num: Numerics,
     guess: np.ndarray | None,
     state0: np.ndarray | None,
 ) -> tuple[np.ndarray, PeriodicResult | None]:
     """`state0` (Theta, Theta_t) when given, else `initial_state` from numerics.start."""
     if state0 is None:
-        return initial_state(model, dl, num.start, num.tail_tol, guess)
+        return initial_state(model, num.start, num.tail_tol, guess)
     z = np.array(state0, dtype=float)
     if z.shape != (2 * model.n,):
         raise ValueError(f"state0 must have shape ({2 * model.n},), got {z.shape}")
     return z, None
 
 
-def slowest_decay_rate(model: DiscreteElastica, dl: Dimensionless) -> float:
+def slowest_decay_rate(model: DiscreteModel) -> float:
     """Slowest decay rate of the linearised transient, per unit tau.
 
     The damping is mass-proportional (eta M), so a mode of undamped frequency w decays as
@@ -142,7 +137,7 @@ def slowest_decay_rate(model: DiscreteElastica, dl: Dimensionless) -> float:
     r = eta / 2 - sqrt(eta^2 / 4 - w^2) ~ w^2 / eta: slower.  The first mode at the lowest
     rotation of the cycle is the slowest (stiffening only raises w).
     """
-    eta = model.eta
+    eta, dl = model.eta, model.dl
     if eta == 0.0:
         return 0.0
     ef = model.effects
@@ -150,22 +145,6 @@ def slowest_decay_rate(model: DiscreteElastica, dl: Dimensionless) -> float:
     w1 = float(dimensionless_frequencies(lam_min, dl.hub_ratio, 1, model.grid.N, ef.softening)[0])
     half = eta / 2.0
     return half - math.sqrt(half * half - w1 * w1) if w1 < half else half
-
-
-def first_order_rhs(
-    model: DiscreteElastica, dl: Dimensionless, deadline: float
-) -> Callable[[float, np.ndarray], np.ndarray]:
-    """(Theta_t, Theta_tt) of the state z = (Theta, Theta_t); raises OutOfTime after `deadline`
-    (a time.perf_counter value), so that solve_ivp stops inside a step."""
-    n = model.n
-
-    def rhs(tau: float, z: np.ndarray) -> np.ndarray:
-        if time.perf_counter() > deadline:
-            raise OutOfTime
-        acc, _, _ = model.acceleration(z[:n], z[n:], dl.lam(tau), dl.lam_dot(tau))
-        return np.concatenate([z[n:], acc])
-
-    return rhs
 
 
 def collocation_window(
@@ -177,15 +156,42 @@ def collocation_window(
     return period_samples(dl, 0, p, m), np.tile(trig_interpolate(res.theta.T, m).T, (1, p))
 
 
+def _orbit_state(
+    model: DiscreteModel,
+    num: Numerics,
+    res: PeriodicResult,
+    fl: FloquetResult | None,
+    status: int,
+    message: str,
+    transient: float,
+    t0: float,
+) -> SteadyState:
+    """A SteadyState reported from the collocated orbit itself (no time stepping)."""
+    tau, theta = collocation_window(model.dl, num, res)
+    return SteadyState(
+        tau=tau,
+        theta=theta,
+        y_m=np.atleast_1d(model.midspan(theta)),
+        converged=status == 0,
+        status=status,
+        message=message,
+        periods=0,
+        transient=transient,
+        seconds=time.perf_counter() - t0,
+        periodic=res,
+        floquet=fl,
+        state=np.concatenate([res.theta[:, 0], res.theta_t[:, 0]]) if status == 0 else None,
+    )
+
+
 def _from_collocation(
-    model: DiscreteElastica, dl: Dimensionless, num: Numerics, res: PeriodicResult, t0: float
+    model: DiscreteModel, num: Numerics, res: PeriodicResult, t0: float
 ) -> SteadyState:
     """SteadyState straight from the collocation (no time stepping): `integrate=False`."""
-    taus, theta = collocation_window(dl, num, res)
-    fl = orbit_stability(model, dl, res)
+    fl = orbit_stability(model, res)
     ok = res.converged and res.harmonic_tail <= num.tail_tol and model.eta > 0.0
     msg = f"collocation M={res.M}: {res.message}, harmonic tail {res.harmonic_tail:.2g}"
-    cert = orbit_certificate(fl, res, num, dl)
+    cert = _certificate(fl, res, num, model.dl)
     if cert is not None:
         msg += f"; {cert.describe()}"
     msg += stability_note(fl)
@@ -197,81 +203,66 @@ def _from_collocation(
         msg += "; undamped model has no steady state (a periodic orbit, not an attractor)"
     elif not ok:
         msg += " (not verified: collocation did not meet its tolerance)"
-    return SteadyState(
-        tau=taus,
-        theta=theta,
-        y_m=np.atleast_1d(model.grid.midspan(theta)),
-        converged=ok,
-        status=0 if ok else (STATUS_UNSTABLE if unstable else 1),
-        message=msg,
-        periods=0,
-        transient=res.harmonic_tail,
-        seconds=time.perf_counter() - t0,
-        periodic=res,
-        floquet=fl,
-    )
+    status = 0 if ok else (STATUS_UNSTABLE if unstable else 1)
+    return _orbit_state(model, num, res, fl, status, msg, res.harmonic_tail, t0)
 
 
-def orbit_certificate(
+def _certificate(
     fl: FloquetResult | None, periodic: PeriodicResult, num: Numerics, dl: Dimensionless
 ) -> Certificate | None:
-    """`monodromy_certificate` of a collocated orbit with the run's ss_tol and velocity scale."""
+    """`monodromy_certificate` with the run's ss_tol and velocity scale max(omega, 1)."""
     return monodromy_certificate(fl, periodic.theta, num.ss_tol, max(dl.omega, 1.0))
 
 
-def certified(
-    model: DiscreteElastica,
-    dl: Dimensionless,
-    num: Numerics,
-    periodic: PeriodicResult,
-    fl: FloquetResult | None,
-    t0: float,
-) -> tuple[SteadyState | None, str]:
-    """The collocated orbit as the steady state when the monodromy certifies it (no time
-    stepping), else None and why not (for the message of the time-stepped check)."""
-    state, why_not, _ = _certify(model, dl, num, periodic, fl, t0)
-    return state, why_not
-
-
-def _certify(
-    model: DiscreteElastica,
-    dl: Dimensionless,
+def accept_certified(
+    model: DiscreteModel,
     num: Numerics,
     periodic: PeriodicResult,
     fl: FloquetResult | None,
     t0: float,
 ) -> tuple[SteadyState | None, str, Certificate | None]:
-    """`certified`, with the certificate it decided by (None when there was none to give)."""
+    """The collocated orbit as the steady state when its monodromy certificate holds.
+
+    An ambiguous certificate (the first try's Floquet steps cannot tell) is decided again with
+    the full step count.
+
+    Parameters
+    ----------
+    model : DiscreteModel
+        The model.
+    num : Numerics
+        certify, tail_tol, ss_tol and the RMS window.
+    periodic : PeriodicResult
+        The collocated orbit.
+    fl : FloquetResult or None
+        Its multipliers and defect.
+    t0 : float
+        `time.perf_counter` at the start of the steady-state search (for `seconds`).
+
+    Returns
+    -------
+    state : SteadyState or None
+        The orbit as the steady state, or None.
+    why_not : str
+        Why not, for the message of the time-stepped check ('' when there was no certificate).
+    certificate : Certificate or None
+        The certificate decided by.
+    """
     if num.certify != "monodromy" or periodic.harmonic_tail > num.tail_tol:
         return None, "", None
-    cert = orbit_certificate(fl, periodic, num, dl)
+    cert = _certificate(fl, periodic, num, model.dl)
     if cert is not None and cert.ambiguous:  # the first try's steps cannot tell: all of them
-        fl = orbit_stability(model, dl, periodic, steps=default_steps(periodic.M))
-        cert = orbit_certificate(fl, periodic, num, dl)
+        fl = orbit_stability(model, periodic, steps=default_steps(periodic.M))
+        cert = _certificate(fl, periodic, num, model.dl)
     if cert is None:
         return None, "", None
     if not cert.certified:
         return None, f"not certified by the monodromy ({cert.describe()}); ", cert
-    tau, theta = collocation_window(dl, num, periodic)
     message = (
         f"collocation orbit (M={periodic.M}, harmonic tail {periodic.harmonic_tail:.2g}) "
         f"certified by the monodromy ({cert.describe()})" + stability_note(fl)
     )
-    state = SteadyState(
-        tau=tau,
-        theta=theta,
-        y_m=np.atleast_1d(model.grid.midspan(theta)),
-        converged=True,
-        status=0,
-        message=message,
-        periods=0,
-        transient=cert.offset,
-        seconds=time.perf_counter() - t0,
-        periodic=periodic,
-        floquet=fl,
-        state=np.concatenate([periodic.theta[:, 0], periodic.theta_t[:, 0]]),
-    )
-    return state, "", cert
+    return _orbit_state(model, num, periodic, fl, 0, message, cert.offset, t0), "", cert
 
 
 @dataclass(frozen=True)
@@ -290,8 +281,7 @@ class Tolerances:
 
 
 def tolerances(
-    model: DiscreteElastica,
-    dl: Dimensionless,
+    model: DiscreteModel,
     num: Numerics,
     z: np.ndarray,
     response_scale: float | None,
@@ -313,7 +303,7 @@ def tolerances(
     the quasi-static response lets the stepper's error swamp the transient bound, which then
     stalls above ss_tol until max_tau.
     """
-    n = model.n
+    n, dl = model.n, model.dl
     scale = response_scale if response_scale else float(np.max(np.abs(z[:n])))
     if periodic is not None and periodic.converged:
         orbit = float(np.max(np.abs(periodic.theta)))
@@ -321,7 +311,7 @@ def tolerances(
     if not scale or not math.isfinite(scale):
         scale = abs(dl.alpha * dl.omega) * (dl.hub_ratio + 1.0) / 8.0 or 1.0
     wref = max(dl.omega, 1.0)
-    rho = math.exp(-slowest_decay_rate(model, dl) * dl.period)
+    rho = math.exp(-slowest_decay_rate(model) * dl.period)
     rtol = min(num.rtol, 0.1 * num.ss_tol * (1.0 - rho)) if rho < 1.0 else num.rtol
     rtol = max(rtol, 1e-12)
     check = min(1e-2, num.ss_tol * (1.0 - rho) / (3.0 * rho)) if from_orbit and 0 < rho < 1 else 0.0
@@ -333,17 +323,13 @@ class PeriodStepper:
     right-hand side and Jacobian evaluations over all its calls (`nfev`, `njev`)."""
 
     def __init__(
-        self,
-        model: DiscreteElastica,
-        dl: Dimensionless,
-        num: Numerics,
-        tol: Tolerances,
-        deadline: float,
+        self, model: DiscreteModel, num: Numerics, tol: Tolerances, deadline: float
     ) -> None:
-        self.model, self.dl, self.num, self.tol = model, dl, num, tol
+        self.model, self.dl, self.num, self.tol = model, model.dl, num, tol
         self.n = model.n
-        self.rhs = first_order_rhs(model, dl, deadline)
-        self.jac = self._jacobian if num.jacobian == "exact" else None
+        system = FirstOrderSystem(model, deadline)
+        self.rhs = system.rhs
+        self.jac = system.jac if num.jacobian == "exact" else None
         if num.method == "TRBDF2":
             from .trbdf2 import TRBDF2
 
@@ -351,10 +337,6 @@ class PeriodStepper:
         else:
             self.method = num.method
         self.nfev = self.njev = 0
-
-    def _jacobian(self, tau: float, z: np.ndarray) -> np.ndarray:
-        n, dl = self.n, self.dl
-        return self.model.first_order_jacobian(z[:n], z[n:], dl.lam(tau), dl.lam_dot(tau))
 
     def periods(self, k: int, count: int, z: np.ndarray, t_eval: np.ndarray, rtol: float):
         """solve_ivp from tau = k P over `count` periods; None when the wall-time budget ran out."""
@@ -523,90 +505,116 @@ def rms_window(
     return Window(taus, sol.y[:n], 0, run.message, k + p)
 
 
-#: the finest collocation `certified_or_refined` goes to (solve_periodic_adaptive's M_max)
+#: the finest collocation `certify_refining` goes to (solve_periodic_adaptive's M_max)
 REFINE_M_MAX = 129
 
 
-def certified_or_refined(
-    model: DiscreteElastica,
-    dl: Dimensionless,
+def certify_refining(
+    model: DiscreteModel,
     num: Numerics,
     periodic: PeriodicResult,
     fl: FloquetResult | None,
     t0: float,
 ) -> tuple[SteadyState | None, str, PeriodicResult, FloquetResult | None]:
-    """`certified`, with the collocation refined (M -> 2M - 1, up to REFINE_M_MAX, from the
-    coarser orbit's interpolant) while the certificate fails on its offset estimate: the offset
-    falls with the interpolant's defect, and a finer orbit costs less than the periods of time
-    stepping that would verify the coarse one (docs/stability.md); it stops where the offset
-    does not halve.  Returns (the state or None,
-    why not, the last orbit, its multipliers)."""
-    state, why_not, cert = _certify(model, dl, num, periodic, fl, t0)
+    """`accept_certified`, with the orbit refined (`periodic.refined`, up to REFINE_M_MAX)
+    while its certificate fails on the offset estimate.
+
+    The offset falls with the interpolant's defect, and a finer orbit costs less than the
+    periods of time stepping that would verify the coarse one (docs/stability.md); the
+    refinement stops where the offset does not halve.
+
+    Returns
+    -------
+    state : SteadyState or None
+        The certified orbit as the steady state, or None.
+    why_not : str
+        Why the last orbit is not certified ('' without a certificate).
+    periodic : PeriodicResult
+        The last orbit.
+    fl : FloquetResult or None
+        Its multipliers.
+    """
+    state, why_not, cert = accept_certified(model, num, periodic, fl, t0)
     while state is None and why_not and 2 * periodic.M - 1 <= REFINE_M_MAX:
-        M = 2 * periodic.M - 1
-        finer = solve_periodic(dl, model.grid.N, M, guess=trig_interpolate(periodic.theta.T, M))
-        finer_fl = orbit_stability(model, dl, finer)
+        finer = refined(model, periodic)
+        finer_fl = orbit_stability(model, finer)
         if finer_fl is None or not finer_fl.stable:
             break
         previous = cert.offset
         periodic, fl = finer, finer_fl
-        state, why_not, cert = _certify(model, dl, num, periodic, fl, t0)
+        state, why_not, cert = accept_certified(model, num, periodic, fl, t0)
         if cert is None or not cert.offset <= previous / 2:  # the defect does not fall with M
             break
     return state, why_not, periodic, fl
 
 
 def steady_state(
-    dl: Dimensionless,
+    model: DiscreteModel,
     numerics: Numerics | None = None,
     progress: Callable[[int, float], None] | None = None,
     response_scale: float | None = None,
     guess: np.ndarray | None = None,
     state0: np.ndarray | None = None,
 ) -> SteadyState:
-    """Integrate from `numerics.start` until the periodic steady state, then sample it.
+    """The periodic steady state of `model` under its drive, sampled over the RMS window.
 
     The steps: the initial state (`starting_state`), the certificate of a collocated orbit
-    (`certified_or_refined`), the stepper's tolerances (`tolerances`), the march period by
-    period to the steady state (`march`, with a `PeriodStepper`), the RMS window (`rms_window`).
-    With numerics.integrate = False (and start = "periodic") the collocation result is returned
-    as it is: fastest, but not checked by time stepping.  `guess` (M, N-1) seeds the collocation
-    (continuation along a sweep).  `state0` (Theta, Theta_t) at tau = 0, if given, is the initial
-    state instead of `numerics.start` (no collocation: time stepping from where the beam is, e.g.
-    the previous drive frequency's final `state` in a sweep that shows hysteresis).
+    (`certify_refining`), the stepper's tolerances (`tolerances`), the march period by
+    period to the steady state (`march`, with a `PeriodStepper`), the RMS window (`rms_window`)
+    and the stability of what is reported (`reported_stability`).  Never raises for a solver
+    failure: the result says whether a steady state was reached and why not.
+
+    Parameters
+    ----------
+    model : DiscreteModel
+        The model and its drive.
+    numerics : Numerics or None
+        Tolerances, budgets and strategy (default `Numerics()`; its N is the caller's: the
+        model has its grid).  With integrate = False (and start = "periodic") the collocation
+        result is returned as it is: fastest, but not checked by time stepping.
+    progress : callable or None
+        progress(period, transient bound) after every period of time stepping.
+    response_scale : float or None
+        Size of the response behind the absolute tolerance (the quasi-static max |Theta|).
+    guess : numpy.ndarray or None
+        An orbit (M, n) that seeds the collocation (continuation along a sweep).
+    state0 : numpy.ndarray or None
+        (Theta, Theta_t) at tau = 0 instead of `numerics.start`: time stepping from where the
+        beam is (no collocation), e.g. the previous drive frequency's final `state` in a sweep
+        that shows hysteresis.
+
+    Returns
+    -------
+    SteadyState
     """
     num = numerics if numerics is not None else Numerics()
     t0 = time.perf_counter()
-    model = DiscreteElastica.from_dimensionless(dl, num.N)
-    z, periodic = starting_state(model, dl, num, guess, state0)
+    z, periodic = starting_state(model, num, guess, state0)
     if not num.integrate and periodic is not None:
-        return _from_collocation(model, dl, num, periodic, t0)
-    orbit_fl = orbit_stability(model, dl, periodic)  # an unstable orbit is left, not verified
+        return _from_collocation(model, num, periodic, t0)
+    orbit_fl = orbit_stability(model, periodic)  # an unstable orbit is left, not verified
     unstable_orbit = orbit_fl is not None and orbit_fl.unstable
     from_orbit = periodic is not None and periodic.converged and not unstable_orbit
     why_not = ""
     if from_orbit:
-        state, why_not, periodic, orbit_fl = certified_or_refined(
-            model, dl, num, periodic, orbit_fl, t0
-        )
+        state, why_not, periodic, orbit_fl = certify_refining(model, num, periodic, orbit_fl, t0)
         if state is not None:
             return state
         z = np.concatenate([periodic.theta[:, 0], periodic.theta_t[:, 0]])
-    tol = tolerances(model, dl, num, z, response_scale, periodic, from_orbit)
+    tol = tolerances(model, num, z, response_scale, periodic, from_orbit)
     if unstable_orbit:
         z = leave_orbit(z, orbit_fl, tol.scale)
-    stepper = PeriodStepper(model, dl, num, tol, deadline=t0 + num.max_seconds)
+    stepper = PeriodStepper(model, num, tol, deadline=t0 + num.max_seconds)
     run = march(stepper, z, from_orbit, progress)
     win = rms_window(stepper, run, periodic, from_orbit)
-    status, message, fl = reported_stability(model, dl, num, win, orbit_fl, from_orbit)
-    message = why_not + message
+    status, message, fl = reported_stability(model, num, win, orbit_fl, from_orbit)
     return SteadyState(
         tau=win.tau,
         theta=win.theta,
-        y_m=np.atleast_1d(model.grid.midspan(win.theta)),
+        y_m=np.atleast_1d(model.midspan(win.theta)),
         converged=status == 0,
         status=status,
-        message=message,
+        message=why_not + message,
         periods=win.periods,
         transient=run.bound,
         nfev=stepper.nfev,
@@ -620,8 +628,7 @@ def steady_state(
 
 
 def reported_stability(
-    model: DiscreteElastica,
-    dl: Dimensionless,
+    model: DiscreteModel,
     num: Numerics,
     win: Window,
     orbit_fl: FloquetResult | None,
@@ -633,7 +640,7 @@ def reported_stability(
     status, message = win.status, win.message
     fl = orbit_fl if status == 0 and win.periods == 1 and from_orbit else None
     if status == 0 and fl is None:
-        fl = window_stability(model, dl, win.theta[:, -num.samples_per_period :])
+        fl = window_stability(model, win.theta[:, -num.samples_per_period :])
         if fl is not None and fl.unstable:
             status = STATUS_UNSTABLE
             message += "; but the orbit reached is unstable (a slow transient, not a steady state)"

@@ -23,7 +23,7 @@ with job_log(snakemake.log[0], snakemake.input, snakemake.output, snakemake.rule
         if done % 10 == 0 or done == total:
             log.info("%d of %d periods", done, total)
 
-    res = response_of(scene, r["transient_periods"], r["section_periods"], N=r["N"],
+    res = response_of(scene.model(), scene.beam.T, r["transient_periods"], r["section_periods"],
                       start=r["start"], max_seconds=r["max_seconds"], rtol=r["rtol"],
                       progress=progress)  # fmt: skip
     log.info("%s", res.message)

@@ -1,0 +1,269 @@
+"""The contract between a discrete model of the rotating beam and the solvers.
+
+Every solver of rotbeam (collocation, time stepping, Floquet, continuation, the quasi-static
+solver, the response classification) takes a `DiscreteModel` and uses nothing else of it than
+what this class declares.  The equations and why they take this form: docs/model.md, "The
+model contract".
+"""
+
+from __future__ import annotations
+
+from abc import ABC, abstractmethod
+
+import numpy as np
+from scipy.linalg import lu_factor, lu_solve
+
+from .grid import Grid
+from .params import Dimensionless, Effects
+
+
+class DiscreteModel(ABC):
+    """A discrete model of the beam on the rotating disk, as the solvers see it.
+
+    The model is second order in the n angles Theta,
+
+        M(Theta) (Theta_tt + eta Theta_t) + S(Theta) Theta_t^2 + 2 lam B(Theta) Theta_t
+            + K Theta + L(Theta; lam, lam_dot) = 0,
+
+    with the Coriolis term only when `effects.coriolis` is on.  A subclass gives the mass and
+    gyroscopic matrices M, B (`inertia_rows`), the stiffness K (`stiffness`), the loads L and
+    their exact Jacobian (`load_torque_rows`), the scene it is built for (`dl`, with the drive
+    lam(tau), lam_dot(tau)) and a copy of itself for another scene (`at`).  S, the matrix of the
+    squared rates, is B unless the subclass says otherwise (`velocity_matrix_rows`).  From
+    these the base class derives, once, what the solvers call: the first-order right-hand side
+    and its Jacobian, the static residual, the linear operators and the outputs.
+
+    Attributes
+    ----------
+    dl : Dimensionless
+        The scene: dimensionless groups, effects and drive.
+    grid : Grid
+        Nodes, quadratures and outputs (y_m, tip) of the discretisation.
+    n : int
+        Number of angles (the state of the first-order system has 2 n entries).
+    eta : float
+        Damping applied (0 with `effects.damping` off).
+    effects : Effects
+        The loads the model computes.
+    """
+
+    dl: Dimensionless
+    grid: Grid
+    n: int
+    eta: float
+    effects: Effects
+
+    # --- what a model must give ---------------------------------------------------------------
+    @abstractmethod
+    def inertia_rows(self, theta: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Mass and gyroscopic matrices at m instants.
+
+        Parameters
+        ----------
+        theta : numpy.ndarray
+            Angles, shape (m, n).
+
+        Returns
+        -------
+        M, B : numpy.ndarray
+            Shape (m, n, n) each, with d(M a)/dTheta = B diag(a) - diag(B a) and
+            d(B v)/dTheta = diag(M v) - M diag(v) for fixed vectors a, v.
+        """
+
+    @property
+    @abstractmethod
+    def stiffness(self) -> np.ndarray:
+        """The bending stiffness K, shape (n, n)."""
+
+    @abstractmethod
+    def load_torque_rows(
+        self, theta: np.ndarray, lam: np.ndarray, lam_dot: np.ndarray, jacobian: bool = False
+    ) -> np.ndarray | tuple[np.ndarray, np.ndarray]:
+        """The loads L(Theta; lam, lam_dot) at m instants, and their exact Jacobians.
+
+        Parameters
+        ----------
+        theta : numpy.ndarray
+            Angles, shape (m, n).
+        lam, lam_dot : numpy.ndarray
+            Rotation rate Omega T and its rate of change at the m instants, shape (m,).
+        jacobian : bool
+            Also return dL/dTheta.
+
+        Returns
+        -------
+        numpy.ndarray or tuple
+            L, shape (m, n); with `jacobian`, (L, dL/dTheta of shape (m, n, n)).
+        """
+
+    @abstractmethod
+    def at(self, dl: Dimensionless) -> DiscreteModel:
+        """The same model (grid, structure) for another scene `dl`."""
+
+    def velocity_matrix_rows(self, theta: np.ndarray, B: np.ndarray) -> np.ndarray:
+        """S, the matrix multiplying Theta_t^2, at m instants: B (the derivation's), unless a
+        model says otherwise (the printed appendix).  The Jacobians use B either way."""
+        return B
+
+    # --- the drive ------------------------------------------------------------------------------
+    def drive_rows(self, tau: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """lam and lam_dot at the instants `tau` (units of T).
+
+        Parameters
+        ----------
+        tau : numpy.ndarray
+            Instants, shape (m,).
+
+        Returns
+        -------
+        lam, lam_dot : numpy.ndarray
+            Shape (m,) each.
+        """
+        dl = self.dl
+        return np.array([dl.lam(t) for t in tau]), np.array([dl.lam_dot(t) for t in tau])
+
+    # --- first-order form -----------------------------------------------------------------------
+    def velocity_vector(self, theta_t: np.ndarray, lam: np.ndarray | float) -> np.ndarray:
+        """v = Theta_t^2 (+ 2 lam Theta_t with Coriolis): what B multiplies, rows of theta_t."""
+        v = theta_t**2
+        if self.effects.coriolis:
+            lam = np.asarray(lam, dtype=float)
+            v = v + 2.0 * (lam[:, None] if lam.ndim else lam) * theta_t
+        return v
+
+    def acceleration(
+        self, theta: np.ndarray, theta_t: np.ndarray, lam: float, lam_dot: float
+    ) -> np.ndarray:
+        """Theta_tt at one instant (the time stepper's right-hand side).
+
+        Parameters
+        ----------
+        theta, theta_t : numpy.ndarray
+            Angles and their rates, shape (n,).
+        lam, lam_dot : float
+            Rotation rate and its rate of change.
+
+        Returns
+        -------
+        numpy.ndarray
+            Theta_tt, shape (n,).
+        """
+        M, B = (a[0] for a in self.inertia_rows(theta[None]))
+        L = self.load_torque_rows(theta[None], [lam], [lam_dot])[0]
+        rhs = -self.stiffness @ theta - L - B @ (theta_t**2)
+        if self.effects.coriolis:
+            rhs -= 2.0 * lam * (B @ theta_t)
+        S = self.velocity_matrix_rows(theta[None], B[None])[0]
+        if S is not B:
+            rhs -= (S - B) @ (theta_t**2)
+        lu = lu_factor(M, check_finite=False)
+        return lu_solve(lu, rhs, check_finite=False) - self.eta * theta_t
+
+    def first_order_rows(
+        self, theta: np.ndarray, theta_t: np.ndarray, lam: np.ndarray, lam_dot: np.ndarray
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """The first-order right-hand side (Theta_t, Theta_tt) and its exact Jacobian at m
+        instants at once (the Floquet monodromy needs them at every step).
+
+        Parameters
+        ----------
+        theta, theta_t : numpy.ndarray
+            Angles and rates, shape (m, n).
+        lam, lam_dot : numpy.ndarray
+            Shape (m,).
+
+        Returns
+        -------
+        F : numpy.ndarray
+            (Theta_t, Theta_tt), shape (m, 2 n).
+        J : numpy.ndarray
+            dF/d(Theta, Theta_t), shape (m, 2 n, 2 n); exact for S = B (docs/model.md).
+        """
+        n, K = self.n, self.stiffness
+        lam, lam_dot = np.asarray(lam, dtype=float), np.asarray(lam_dot, dtype=float)
+        M, B = self.inertia_rows(theta)
+        v = self.velocity_vector(theta_t, lam)
+        torque, dL = self.load_torque_rows(theta, lam, lam_dot, jacobian=True)
+        forces = -(theta @ K.T) - torque - np.einsum("mij,mj->mi", B, v)
+        S = self.velocity_matrix_rows(theta, B)
+        if S is not B:
+            forces -= np.einsum("mij,mj->mi", S - B, theta_t**2)
+        a0 = np.linalg.solve(M, forces[..., None])[..., 0]
+        idx = np.arange(n)
+        dr = -(K[None] + dL) + M * v[:, None, :] - B * a0[:, None, :]
+        dr[:, idx, idx] += -np.einsum("mij,mj->mi", M, v) + np.einsum("mij,mj->mi", B, a0)
+        dv = 2.0 * B * theta_t[:, None, :]
+        if self.effects.coriolis:
+            dv = dv + 2.0 * lam[:, None, None] * B
+        X = np.linalg.solve(M, np.concatenate([dr, dv], axis=2))
+        J = np.zeros((theta.shape[0], 2 * n, 2 * n))
+        J[:, idx, n + idx] = 1.0
+        J[:, n:, :n] = X[:, :, :n]
+        J[:, n:, n:] = -X[:, :, n:]
+        J[:, n + idx, n + idx] -= self.eta
+        F = np.concatenate([theta_t, a0 - self.eta * theta_t], axis=1)
+        return F, J
+
+    def first_order_jacobian(
+        self, theta: np.ndarray, theta_t: np.ndarray, lam: float, lam_dot: float
+    ) -> np.ndarray:
+        """`first_order_rows`' Jacobian at one instant, shape (2 n, 2 n)."""
+        return self.first_order_rows(theta[None], theta_t[None], [lam], [lam_dot])[1][0]
+
+    # --- the static problem ---------------------------------------------------------------------
+    def static_rows(
+        self, theta: np.ndarray, lam: np.ndarray, lam_dot: np.ndarray, jacobian: bool = False
+    ) -> np.ndarray | tuple[np.ndarray, np.ndarray]:
+        """Residual K Theta + L of the static equations at m instants, and its Jacobian.
+
+        Parameters
+        ----------
+        theta : numpy.ndarray
+            Angles, shape (m, n).
+        lam, lam_dot : numpy.ndarray
+            Shape (m,).
+        jacobian : bool
+            Also return K + dL/dTheta, shape (m, n, n).
+
+        Returns
+        -------
+        numpy.ndarray or tuple
+            The residual (m, n), and with `jacobian` the Jacobians.
+        """
+        K = self.stiffness
+        if not jacobian:
+            return theta @ K.T + self.load_torque_rows(theta, lam, lam_dot)
+        torque, dL = self.load_torque_rows(theta, lam, lam_dot, jacobian=True)
+        dL += K[None]
+        return theta @ K.T + torque, dL
+
+    def linear_operators(self, lam: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """The model linearised about the straight beam turning steadily at `lam`.
+
+        Returns
+        -------
+        mass, stiffness : numpy.ndarray
+            M(0) and K + dL/dTheta(0; lam, 0), shape (n, n).
+        euler : numpy.ndarray
+            dL/d(lam_dot) at Theta = 0, shape (n,): the load per unit angular acceleration
+            (zero with the Euler load off).
+        """
+        zero = np.zeros((1, self.n))
+        mass = self.inertia_rows(zero)[0][0]
+        stiffness = self.static_rows(zero, [lam], [0.0], jacobian=True)[1][0]
+        return mass, stiffness, self.euler_load_vector()
+
+    def euler_load_vector(self) -> np.ndarray:
+        """dL/d(lam_dot) at Theta = 0 (L is linear in lam_dot), shape (n,)."""
+        zero = np.zeros((1, self.n))
+        unit = self.load_torque_rows(zero, [0.0], [1.0])[0]
+        return unit - self.load_torque_rows(zero, [0.0], [0.0])[0]
+
+    # --- outputs --------------------------------------------------------------------------------
+    def midspan(self, theta: np.ndarray) -> np.ndarray:
+        """y_m / L from Theta, shape (n,) or (n, m) (`Grid.midspan`)."""
+        return self.grid.midspan(theta)
+
+    def tip(self, theta: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Tip position (x, y) / L relative to the clamp (`Grid.tip`)."""
+        return self.grid.tip(theta)

@@ -1,0 +1,133 @@
+"""The grid of the discrete model: nodes, the position and tension quadratures, the bending
+stiffness and the outputs read off the angles (docs/model.md, "The discrete model")."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..config.errors import RotbeamInputError
+from ..config.parameters import check_value
+
+
+def check_N(N: int) -> int:
+    """The number of grid intervals, checked against the registry (numerics.N)."""
+    return check_value("numerics", "N", N)
+
+
+def centrifugal_strain(s, hub_ratio: float, kappa: float, lam: float) -> np.ndarray:
+    """Axial strain eps(s) of the straight extensible beam spinning steadily at lam, exact.
+
+    n' = -lam^2 (r_o + x), x' = 1 + eps, eps = kappa n, n(1) = 0, x(0) = 0 give
+    n'' + k^2 n = -lam^2 with k = |lam| sqrt(kappa), whose solution is
+    1 + eps = [cos(k s) + k r_o sin(k (1 - s))] / cos(k), written below without cancellation;
+    eps = kappa lam^2 [r_o (1 - s) + (1 - s^2)/2] (1 + O(k^2)).  No tensile equilibrium for
+    k >= pi/2 (the stretch runs away).
+    """
+    k = abs(float(lam)) * math.sqrt(kappa)
+    if not k < 0.5 * math.pi:
+        raise RotbeamInputError(
+            f"effects.extension: no stretched equilibrium at lam sqrt(kappa) = {k:.4g} >= pi/2 "
+            f"(lam = Omega T = {lam:.4g}, kappa = (h/L)^2/12 = {kappa:.4g})"
+        )
+    s = np.asarray(s, dtype=float)
+    a, b = 0.5 * k * (1.0 + s), 0.5 * k * (1.0 - s)
+    return (2.0 * np.sin(a) * np.sin(b) + k * hub_ratio * np.sin(2.0 * b)) / math.cos(k)
+
+
+@dataclass(frozen=True)
+class Grid:
+    """Operators of the N-interval grid (built once, reused for every evaluation)."""
+
+    N: int
+    ds: float
+    s: np.ndarray  #: nodes 1..N
+    P: np.ndarray  #: (N, N-1): positions at nodes 1..N from cos/sin of Theta
+    Q: np.ndarray  #: (N-1, N): int_{s_i}^1 of nodal values at 1..N
+    W: np.ndarray  #: (N-1, N-1) = Q P
+    K: np.ndarray  #: (N-1, N-1) bending stiffness
+    mid: int  #: index of the node used for y_m (or -1: interpolate)
+    x0: float  #: the clamp node's share of every x: ds/2 (1 + eps_0)
+    strain: np.ndarray | None = None  #: eps at nodes 0..N (extension), None: inextensible
+
+    @classmethod
+    def build(cls, N: int, strain: np.ndarray | None = None) -> Grid:
+        """The grid; with `strain` (eps at nodes 0..N) the element lengths are ds (1 + eps)."""
+        N = check_N(N)
+        n = N - 1
+        ds = 1.0 / N
+        s = ds * np.arange(1, N + 1)
+        P = np.zeros((N, n))
+        for i in range(1, N):  # node i, angles 1..i
+            P[i - 1, : i - 1] = ds
+            P[i - 1, i - 1] = ds / 2
+        P[N - 1] = P[N - 2]
+        P[N - 1, n - 1] += ds  # tip: theta_N = theta_{N-1}
+        Q = np.zeros((n, N))
+        for i in range(1, N):  # tension at node i from nodes i..N
+            Q[i - 1, i - 1] = ds / 2
+            Q[i - 1, i : N - 1] = ds
+            Q[i - 1, N - 1] = ds / 2
+        K = (2.0 * np.eye(n) - np.eye(n, k=1) - np.eye(n, k=-1)) / ds**2
+        K[-1, -1] = 1.0 / ds**2
+        mid = N // 2 - 1 if N % 2 == 0 else -1
+        x0 = ds / 2
+        if strain is not None:
+            strain = np.array(strain, dtype=float)
+            if strain.shape != (N + 1,):
+                raise ValueError(f"strain must have shape ({N + 1},), got {strain.shape}")
+            x0 = x0 * (1.0 + strain[0])
+            P = P * (1.0 + strain[1:N])[None, :]
+            P[N - 1, n - 1] = ds * (1.0 + strain[N - 1]) + ds / 2 * (1.0 + strain[N])
+            K = K / (1.0 + strain[1:N])[:, None]
+        return cls(N=N, ds=ds, s=s, P=P, Q=Q, W=Q @ P, K=K, mid=mid, x0=x0, strain=strain)
+
+    def positions(self, theta: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """x, y at nodes 1..N (relative to the clamp); theta has shape (N-1,) or (N-1, m)."""
+        x = self.x0 + self.P @ np.cos(theta)
+        y = self.P @ np.sin(theta)
+        return x, y
+
+    def midspan(self, theta: np.ndarray) -> np.ndarray:
+        """y_m = y(s = 1/2) from Theta of shape (N-1,) or (N-1, m).
+
+        Parameters
+        ----------
+        theta : numpy.ndarray
+            Angles at nodes 1..N-1, one column per instant.
+
+        Returns
+        -------
+        numpy.ndarray
+            y(1/2) in units of L: the node value for even N, linear interpolation for odd N.
+        """
+        _, y = self.positions(theta)
+        return self.at_midspan(y)
+
+    def midspan_rate(self, theta: np.ndarray, theta_t: np.ndarray) -> np.ndarray:
+        """dy_m/dtau from Theta and Theta_t (N-1,) or (N-1, m), interpolated as `midspan`."""
+        return self.at_midspan(self.P @ (np.cos(theta) * theta_t))
+
+    def at_midspan(self, nodal: np.ndarray) -> np.ndarray:
+        """A nodal quantity (rows: nodes 1..N) at s = 1/2 (linear interpolation for odd N)."""
+        if self.mid >= 0:
+            return nodal[self.mid]
+        i = self.N // 2  # node i at s_i < 1/2 < s_{i+1}: rows i-1, i
+        w = 0.5 * self.N - i
+        return (1 - w) * nodal[i - 1] + w * nodal[i]
+
+    def tip(self, theta: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """x, y of the free end (node N) relative to the clamp, units of L."""
+        x, y = self.positions(theta)
+        return x[-1], y[-1]
+
+    def full_shape(self, theta: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """s, x, y at all nodes 0..N (clamp included) for one Theta."""
+        x, y = self.positions(theta)
+        return (
+            np.concatenate([[0.0], self.s]),
+            np.concatenate([[0.0], x]),
+            np.concatenate([[0.0], y]),
+        )

@@ -1,0 +1,45 @@
+"""A model as a first-order ODE for scipy's solve_ivp: the right-hand side and its exact
+Jacobian, within a wall-time deadline."""
+
+from __future__ import annotations
+
+import math
+import time
+
+import numpy as np
+
+from ..model.base import DiscreteModel
+
+
+class OutOfTime(Exception):
+    """Raised inside the right-hand side when the wall-time budget is spent."""
+
+
+class FirstOrderSystem:
+    """z' = f(tau, z) with z = (Theta, Theta_t), and df/dz, of one model and its drive.
+
+    Parameters
+    ----------
+    model : DiscreteModel
+        The model.
+    deadline : float
+        A `time.perf_counter` value after which `rhs` raises `OutOfTime`, so that solve_ivp
+        stops inside a step (default: never).
+    """
+
+    def __init__(self, model: DiscreteModel, deadline: float = math.inf) -> None:
+        self.model, self.deadline = model, deadline
+        self.n = model.n
+
+    def rhs(self, tau: float, z: np.ndarray) -> np.ndarray:
+        """(Theta_t, Theta_tt) at tau."""
+        if time.perf_counter() > self.deadline:
+            raise OutOfTime
+        n, dl = self.n, self.model.dl
+        acc = self.model.acceleration(z[:n], z[n:], dl.lam(tau), dl.lam_dot(tau))
+        return np.concatenate([z[n:], acc])
+
+    def jac(self, tau: float, z: np.ndarray) -> np.ndarray:
+        """The exact Jacobian of `rhs`, shape (2 n, 2 n)."""
+        n, dl = self.n, self.model.dl
+        return self.model.first_order_jacobian(z[:n], z[n:], dl.lam(tau), dl.lam_dot(tau))
