@@ -57,23 +57,13 @@ class Collocation:
         self.lam, self.lam_dot = model.drive_rows(self.tau)
         self._cache: tuple | None = None
 
-    def _mass_gyro(self, X):
-        """M and B at every instant: W cos(Theta_i - Theta_k), W sin(Theta_i - Theta_k)."""
-        c, s = np.cos(X), np.sin(X)
-        cc, ss = c[:, :, None] * c[:, None, :], s[:, :, None] * s[:, None, :]
-        sc, cs = s[:, :, None] * c[:, None, :], c[:, :, None] * s[:, None, :]
-        W = self.model.grid.W[None]
-        cc += ss
-        sc -= cs
-        return W * cc, W * sc
-
     def _state(self, X: np.ndarray):
         """Everything the residual and the Jacobian share at X; cached for the last X."""
         if self._cache is not None and self._cache[0] is X:
             return self._cache[1]
         V = self.D @ X
         A = self.D2 @ X
-        Mm, Bm = self._mass_gyro(X)
+        Mm, Bm = self.model.inertia_rows(X)
         v = V * V
         if self.model.effects.coriolis:
             v = v + 2.0 * self.lam[:, None] * V
