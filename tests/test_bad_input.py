@@ -27,7 +27,7 @@ from rotbeam.cli import main
 from rotbeam.config.errors import RotbeamInputError
 from rotbeam.config.scenefile import load_yaml
 from rotbeam.config.schema import merge_config
-from rotbeam.simulate.studies import (
+from rotbeam.paper.studies import (
     convergence_lines,
     fig7_beams,
     grid_columns,
@@ -553,9 +553,9 @@ def test_invalid_flags_name_flag_and_value(case):
     ],
 )
 def test_floquet_steps_bench_names_the_bad_argument(args, words, monkeypatch):
-    """`python3 -m rotbeam.bench.floquet_steps` with a bad argument: one line naming it and what
+    """`python3 -m rotbeam.paper.floquet_steps` with a bad argument: one line naming it and what
     is allowed, before any simulation."""
-    from rotbeam.bench import floquet_steps
+    from rotbeam.paper import floquet_steps
 
     monkeypatch.chdir(ROOT)
     with pytest.raises(SystemExit) as exc:

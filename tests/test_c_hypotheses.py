@@ -1,4 +1,4 @@
-"""rotbeam.analysis.c_hypotheses and rotbeam.model.elastica_printed: the c of named hypotheses for
+"""rotbeam.paper.c_hypotheses and rotbeam.paper.printed_model: the c of named hypotheses for
 the paper's critical-frequency constant (docs/c_hypotheses.md).  N = 20 and one line (C_max = 1)
 of 8 points where a c is computed."""
 
@@ -7,7 +7,10 @@ import math
 import numpy as np
 import pytest
 
-from rotbeam.analysis.c_hypotheses import (
+from rotbeam.config.errors import RotbeamInputError
+from rotbeam.model.elastica import DiscreteElastica
+from rotbeam.model.params import Beam, Dimensionless, Drive, omega0_for_cmax
+from rotbeam.paper.c_hypotheses import (
     GridRule,
     Hypothesis,
     ScanSpec,
@@ -17,11 +20,8 @@ from rotbeam.analysis.c_hypotheses import (
     scene_delta,
     slope_fit,
 )
-from rotbeam.analysis.c_response import continuum_quasistatic_theta
-from rotbeam.config.errors import RotbeamInputError
-from rotbeam.model.elastica import DiscreteElastica
-from rotbeam.model.elastica_printed import PrintedElastica
-from rotbeam.model.params import Beam, Dimensionless, Drive, omega0_for_cmax
+from rotbeam.paper.c_response import continuum_quasistatic_theta
+from rotbeam.paper.printed_model import PrintedElastica
 from rotbeam.simulate.sweeps import resonance_frequency_hz
 from rotbeam.solve.numerics import Numerics
 from rotbeam.solve.static_bvp import solve_static_bvp
@@ -166,7 +166,7 @@ def test_schema_names_every_hypothesis():
 
     import yaml
 
-    from rotbeam.analysis.c_hypotheses import HYPOTHESES
+    from rotbeam.paper.c_hypotheses import HYPOTHESES
 
     root = Path(__file__).resolve().parents[1]
     schema = yaml.safe_load((root / "workflow/schemas/config.schema.yaml").read_text())

@@ -11,17 +11,17 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from rotbeam.analysis.claims import agrees, c_hypotheses_long, judge
-from rotbeam.analysis.collapse import southwell_delta
-from rotbeam.analysis.hypotheses import single_change_study
-from rotbeam.analysis.paper_claims import load_claims
 from rotbeam.config.errors import RotbeamInputError
 from rotbeam.config.scenefile import load_yaml
 from rotbeam.model.params import BETA1, Beam
-from rotbeam.simulate.studies import convergence_lines, fig7_beams, grid_beam, grid_columns
+from rotbeam.paper.claims import agrees, c_hypotheses_long, judge
+from rotbeam.paper.collapse import southwell_delta
+from rotbeam.paper.hypotheses import single_change_study
+from rotbeam.paper.printed import load_claims
+from rotbeam.paper.studies import convergence_lines, fig7_beams, grid_beam, grid_columns
 
 ROOT = Path(__file__).resolve().parents[1]
-CLAIMS = ROOT / "workflow/resources/paper_claims.yaml"
+CLAIMS = ROOT / "rotbeam/paper/paper_claims.yaml"
 TARGET = "results/reproduction/claims.csv"
 # the target first: --configfile takes every word after it
 SNAKEMAKE = [sys.executable, "-m", "snakemake", TARGET]

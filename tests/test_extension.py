@@ -211,14 +211,14 @@ def test_first_order_jacobian_with_extension_matches_finite_differences(coriolis
     assert np.abs(m0.first_order_jacobian(th, tt, 1.3, 0.7) - J).max() > 1e-2 * np.abs(J).max()
 
 
-# --- the stretch study of the claims table (rotbeam.analysis.stretch_study) ------------------
+# --- the stretch study of the claims table (rotbeam.paper.stretch_study) ------------------
 
 
 def test_clamp_strain_against_first_order_closed_form():
     """Small strain: N/(EA) at the clamp -> rho Omega_s^2 L^2 (R_o/L + 1/2) / E, with Omega_s^2
     = Omega_0^2 + a^2/2 the period mean the model freezes the stretch at; the exact strain is
     above it by O(eps^2) (the stretched beam's own centrifugal load)."""
-    from rotbeam.analysis.stretch_study import clamp_strain
+    from rotbeam.paper.stretch_study import clamp_strain
 
     b = Beam()
     for omega0 in (5.0, 30.0):
@@ -231,7 +231,7 @@ def test_inextensible_limit_interpolates_in_log_log():
     """|f_d* change| proportional to C_max through 0.5 % at 100 and 2 % at 400: 1 % at 200."""
     import pandas as pd
 
-    from rotbeam.analysis.stretch_study import inextensible_limit
+    from rotbeam.paper.stretch_study import inextensible_limit
 
     t = pd.DataFrame({"C_max": [10.0, 100.0, 400.0], "studied": [True, True, True],
                       "f_d_star_change": [-5e-4, -5e-3, -2e-2]})  # fmt: skip

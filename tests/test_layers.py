@@ -1,5 +1,6 @@
-"""The package's layers point one way (HELPERS.md, README "Layout"): a module imports only from
-its own layer or the layers below it, and rotbeam never imports snakemake.
+"""The package's layers point one way (README "Layout"): a module imports only from its own layer
+or the layers below it, rotbeam never imports snakemake, and no module outside `rotbeam.paper`
+imports it (an engineer who never heard of the paper uses the core alone).
 
 Every import is read from the source with `ast`, imports inside functions included (a lazy
 import is still a dependency).  `test_the_check_can_fail` feeds the same check a module with an
@@ -27,7 +28,11 @@ LAYERS = (
     "report",
     "bench",
     "cli",
+    "paper",
 )
+
+#: the package's own namespace (`import rotbeam`) gathers the public API from the core layers
+ROOT_MAY_IMPORT = ("config", "model", "solve", "simulate", "analysis", "report")
 
 
 def layer_of(module: str) -> str | None:
@@ -78,7 +83,12 @@ def violations(source: str, module: str, is_package: bool = False) -> list[str]:
         if target is None or target == "root":
             continue
         if own == "root":
-            bad.append(f"{module}:{line} (package root) imports {name}")
+            if target not in ROOT_MAY_IMPORT:
+                bad.append(f"{module}:{line} (package root) imports {name}")
+        elif target == "paper" and own != "paper":
+            bad.append(f"{module}:{line} ({own}) imports {name}: the core never imports the paper")
+        elif own == "paper" and target == "cli":
+            bad.append(f"{module}:{line} (paper) imports {name} (cli)")
         elif target not in rank or own not in rank:
             bad.append(f"{module}:{line} imports {name}: layer {target!r} or {own!r} unknown")
         elif rank[target] > rank[own]:
@@ -119,6 +129,13 @@ def test_the_check_can_fail():
     assert violations("from rotbeam.cli import main\n", "rotbeam.bench.run") == [
         "rotbeam.bench.run:1 (bench) imports rotbeam.cli (cli, a higher layer)"
     ]
+    assert violations("from .paper.studies import REF\n", "rotbeam.cli") == [
+        "rotbeam.cli:1 (cli) imports rotbeam.paper.studies: the core never imports the paper"
+    ]
+    assert violations("from .cli import main\n", "rotbeam", is_package=True) == [
+        "rotbeam:1 (package root) imports rotbeam.cli"
+    ]
+    assert violations("from .simulate.scene import Scene\n", "rotbeam", is_package=True) == []
     # the same layer and the layers below are allowed, relative or absolute
     ok = "from .criterion import rms\nfrom ..model import params\nimport rotbeam.model.modes\n"
     assert violations(ok, "rotbeam.model.surrogate") == []

@@ -17,14 +17,16 @@ from scipy.optimize import brentq
 from rotbeam.config.errors import RotbeamInputError
 from rotbeam.model.params import Beam
 from rotbeam.model.secondorder import (
-    PRINTED_C0_TABLE,
     biquadratic_residual,
     c0_limit,
     c0_root,
-    c0_table,
     delta_rms_canonical,
-    systems_table,
 )
+from rotbeam.paper.appendix_e import systems_table
+from rotbeam.paper.printed import printed_per_threshold, read_claims
+
+#: App. E, Table (c_0): the printed c0 for zeta -> 0 (rotbeam/paper/paper_claims.yaml)
+PRINTED_C0 = printed_per_threshold(read_claims()[1], "c0_")
 
 THRESHOLDS = (0.02, 0.04, 0.06, 0.08, 0.10)
 
@@ -46,7 +48,7 @@ def test_limit_is_exact_root_of_biquadratic(t):
 @pytest.mark.parametrize("t", THRESHOLDS)
 def test_printed_table_is_the_exact_zeta0_root(t):
     """The printed c0 equal sqrt(t), the exact zeta = 0 root, to the 4 printed decimals."""
-    assert abs(PRINTED_C0_TABLE[t] - _smallest_positive_root(0.0, t)) <= 5e-5
+    assert abs(PRINTED_C0[t] - _smallest_positive_root(0.0, t)) <= 5e-5
 
 
 def test_printed_0_19_is_one_minus_0_9_squared():
@@ -126,11 +128,8 @@ def test_root_just_inside_the_existence_limit_is_finite():
     assert math.isfinite(c) and delta_rms_canonical(c, z_max * (1 - 1e-9)) == pytest.approx(0.1)
 
 
-def test_c0_table_rows():
-    rows = c0_table(0.0)
-    assert [r["threshold"] for r in rows] == list(THRESHOLDS)
-    for r in rows:
-        assert abs(r["printed_minus_exact"]) <= 5e-5
+def test_the_printed_table_has_every_threshold():
+    assert sorted(PRINTED_C0) == list(THRESHOLDS)
 
 
 def test_systems_table_cantilever_reference_beam():

@@ -272,7 +272,7 @@ def test_analytical_boundary_equals_paper_derivation():
 
 
 def test_analytical_boundary_exact_variant_close_at_small_c():
-    e_sw = analytical_boundary(BEAM, 0.5)
-    e_ex = analytical_boundary_exact(BEAM, 0.5, N=80)
+    e_sw = analytical_boundary(BEAM, 0.5, 0.385)
+    e_ex = analytical_boundary_exact(BEAM, 0.5, 0.385, N=80)
     assert e_ex == pytest.approx(e_sw, rel=2e-3)  # N = 80 grid error ~ 1e-4, Southwell ~ 1e-5
     assert e_ex <= e_sw * (1 + 1e-3)

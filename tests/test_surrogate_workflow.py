@@ -14,7 +14,12 @@ import pandas as pd
 import pytest
 from conftest import ROOT, snakemake
 
-from rotbeam.analysis.surrogate_study import (
+from rotbeam.config.schema import merge_config
+from rotbeam.model.criterion import critical_from_scan
+from rotbeam.model.params import Beam, Dimensionless, Drive, Effects, drive_groups
+from rotbeam.model.surrogate import steady_rms
+from rotbeam.paper.surrogate_figures import southwell_figure, vs_full_figure
+from rotbeam.paper.surrogate_study import (
     peak_of_line,
     southwell_table,
     surrogate_boundary,
@@ -22,11 +27,6 @@ from rotbeam.analysis.surrogate_study import (
     validity_statement,
     vs_full_table,
 )
-from rotbeam.config.schema import merge_config
-from rotbeam.model.criterion import critical_from_scan
-from rotbeam.model.params import Beam, Dimensionless, Drive, Effects, drive_groups
-from rotbeam.model.surrogate import steady_rms
-from rotbeam.report.surrogate_figures import southwell_figure, vs_full_figure
 from rotbeam.simulate.sweeps import resonance_frequency_hz
 
 BEAM = {"L": 0.040, "h": 0.002, "b": 0.010, "E": 1.22e6, "rho": 1170.2, "R": 0.155, "gamma": 0.039}

@@ -108,7 +108,7 @@ def c_per_threshold(
     table: pd.DataFrame, paper: Mapping[float, float] | None = None
 ) -> pd.DataFrame:
     """Fitted c per threshold (root and grid rule) beside App. E's c_0 and the printed c
-    (`paper`: threshold -> value, from workflow/resources/paper_claims.yaml)."""
+    (`paper`: threshold -> value, from rotbeam/paper/paper_claims.yaml)."""
     paper = paper or {}
     rows = []
     for th, sub in table.groupby("threshold"):

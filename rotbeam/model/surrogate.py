@@ -354,7 +354,7 @@ def phase_boundary(
 def analytical_boundary(
     beam: Beam,
     c_max: float | np.ndarray,
-    c: float = 0.385,
+    c: float,
     S1: float | None = None,
     amplitude: float = 1.0,
 ) -> float | np.ndarray:
@@ -372,7 +372,7 @@ def analytical_boundary(
 def analytical_boundary_exact(
     beam: Beam,
     c_max: float | np.ndarray,
-    c: float = 0.385,
+    c: float,
     amplitude: float = 1.0,
     N: int = 40,
     softening: bool = True,

@@ -21,7 +21,7 @@ two agree (`first_try_stands`: |mu|max to SPREAD_TOL, the fixed-point offset to 
 full S = 2 M steps (M the collocation instants, at least 32) are taken.  Calm orbits, most of a
 sweep, need no more than 12 steps: their J(t) varies slowly over the period.  Measured at the
 benchmark scenes and on a Fig. 7 grid column (docs/stability.md, `python3 -m
-rotbeam.bench.floquet_steps`): a kept first try is within 3e-6 of |mu|max converged in S, the
+rotbeam.paper.floquet_steps`): a kept first try is within 3e-6 of |mu|max converged in S, the
 full count within 1e-4 (6e-5 at the resonant Omega_0 = 5 rad/s, 7 Hz, which takes it).
 Why not Hill's method: the Floquet exponents would be eigenvalues of the (M n)-sized
 collocation pencil (2535 unknowns at N = 40, M = 65), a dense eigenproblem of 5070 with

@@ -10,7 +10,7 @@ from snakemake.utils import validate
 import rotbeam
 from rotbeam import provenance
 from rotbeam.config.errors import RotbeamInputError
-from rotbeam.simulate.studies import (
+from rotbeam.paper.studies import (
     REF,
     convergence_lines,
     fig7_beams,
@@ -138,7 +138,7 @@ def all_targets():
 
 
 # --- paper against reproduction (rules/reproduction.smk) ---
-PAPER_CLAIMS = "workflow/resources/paper_claims.yaml"
+PAPER_CLAIMS = "rotbeam/paper/paper_claims.yaml"
 REPRO = config["reproduction"]
 R7 = repro_fig7_variants(config)
 

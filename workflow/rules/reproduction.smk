@@ -1,6 +1,6 @@
 # Paper against reproduction: the claims table (results/reproduction/claims.csv) and the
 # hypothesis studies behind its explanations (config: reproduction).  Every printed value comes
-# from workflow/resources/paper_claims.yaml; every value of ours from an output of this workflow.
+# from rotbeam/paper/paper_claims.yaml; every value of ours from an output of this workflow.
 
 
 rule repro_fig7_variant:

@@ -4,9 +4,9 @@
 # (`snakemake` is injected by Snakemake)
 import pandas as pd
 
-from rotbeam.analysis.paper_claims import printed_per_threshold, read_claims
 from rotbeam.model.params import Beam
 from rotbeam.model.secondorder import c0_limit, c0_root
+from rotbeam.paper.printed import printed_per_threshold, read_claims
 from rotbeam.report.io import write_table
 from rotbeam.report.joblog import job_log
 

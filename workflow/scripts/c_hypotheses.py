@@ -3,9 +3,9 @@ Markdown with the verdict, figure)."""
 
 # ruff: noqa: F821
 # (`snakemake` is injected by Snakemake)
-from rotbeam.analysis.c_hypotheses import study_from_config
 from rotbeam.model.params import Beam
-from rotbeam.report.c_hypotheses import c_hypotheses_figure, c_hypotheses_markdown
+from rotbeam.paper.c_hypotheses import study_from_config
+from rotbeam.paper.c_hypotheses_figures import c_hypotheses_figure, c_hypotheses_markdown
 from rotbeam.report.io import write_csv, write_text
 from rotbeam.report.joblog import job_log
 

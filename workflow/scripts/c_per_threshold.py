@@ -5,7 +5,7 @@
 import pandas as pd
 
 from rotbeam.analysis.boundary import c_per_threshold
-from rotbeam.analysis.paper_claims import printed_per_threshold, read_claims
+from rotbeam.paper.printed import printed_per_threshold, read_claims
 from rotbeam.report.io import write_table
 from rotbeam.report.joblog import job_log
 

@@ -2,7 +2,7 @@
 
 # ruff: noqa: F821
 # (`snakemake` is injected by Snakemake)
-from rotbeam.report.figures import fig1_drive
+from rotbeam.paper.figures import fig1_drive
 from rotbeam.report.joblog import job_log
 
 with job_log(snakemake.log[0], snakemake.input, snakemake.output, snakemake.rule):

@@ -5,7 +5,7 @@
 import pandas as pd
 
 from rotbeam.analysis.measurements import load_resonance
-from rotbeam.report.figures import fig3_resonance
+from rotbeam.paper.figures import fig3_resonance
 from rotbeam.report.joblog import job_log
 
 with job_log(snakemake.log[0], snakemake.input, snakemake.output, snakemake.rule):

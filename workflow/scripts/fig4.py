@@ -7,7 +7,7 @@ import pandas as pd
 
 from rotbeam.analysis.boundary import boundary_table
 from rotbeam.analysis.measurements import load_resonance
-from rotbeam.report.figures import fig4_compare
+from rotbeam.paper.figures import fig4_compare
 from rotbeam.report.io import write_csv
 from rotbeam.report.joblog import job_log
 

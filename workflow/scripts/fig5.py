@@ -4,7 +4,7 @@
 # (`snakemake` is injected by Snakemake)
 import pandas as pd
 
-from rotbeam.report.figures import fig5_phase
+from rotbeam.paper.figures import fig5_phase
 from rotbeam.report.joblog import job_log
 
 with job_log(snakemake.log[0], snakemake.input, snakemake.output, snakemake.rule):

@@ -6,7 +6,7 @@ import numpy as np
 import pandas as pd
 
 from rotbeam.analysis.boundary import fit_c
-from rotbeam.report.figures import ZETA_UNDERDAMPED, fig7_collapse
+from rotbeam.paper.figures import ZETA_UNDERDAMPED, fig7_collapse
 from rotbeam.report.io import write_json
 from rotbeam.report.joblog import job_log
 

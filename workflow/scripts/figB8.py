@@ -4,7 +4,7 @@
 # (`snakemake` is injected by Snakemake)
 import pandas as pd
 
-from rotbeam.report.figures import figB8_convergence
+from rotbeam.paper.figures import figB8_convergence
 from rotbeam.report.io import write_csv
 from rotbeam.report.joblog import job_log
 

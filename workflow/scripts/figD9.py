@@ -4,7 +4,7 @@
 # (`snakemake` is injected by Snakemake)
 import pandas as pd
 
-from rotbeam.report.figures import figD9_thresholds
+from rotbeam.paper.figures import figD9_thresholds
 from rotbeam.report.joblog import job_log
 
 with job_log(snakemake.log[0], snakemake.input, snakemake.output, snakemake.rule):

@@ -3,7 +3,7 @@
 # ruff: noqa: F821
 # (`snakemake` is injected by Snakemake)
 from rotbeam.model.params import Beam
-from rotbeam.report.figures import figE10_c0
+from rotbeam.paper.figures import figE10_c0
 from rotbeam.report.joblog import job_log
 
 with job_log(snakemake.log[0], snakemake.input, snakemake.output, snakemake.rule):

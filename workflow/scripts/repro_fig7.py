@@ -6,11 +6,11 @@ import json
 
 import pandas as pd
 
-from rotbeam.analysis.hypotheses import fig7_variant_study
-from rotbeam.analysis.paper_claims import read_claims
+from rotbeam.paper.hypotheses import fig7_variant_study
+from rotbeam.paper.printed import read_claims
+from rotbeam.paper.reproduction_figures import fig7_variants
 from rotbeam.report.io import write_csv, write_table
 from rotbeam.report.joblog import job_log
-from rotbeam.report.reproduction_figures import fig7_variants
 
 with job_log(snakemake.log[0], snakemake.input, snakemake.output, snakemake.rule) as log:
     _, claims = read_claims(snakemake.input.claims)

@@ -5,11 +5,11 @@
 import numpy as np
 import pandas as pd
 
-from rotbeam.analysis.hypotheses import figD9_study
-from rotbeam.analysis.paper_claims import read_claims
+from rotbeam.paper.hypotheses import figD9_study
+from rotbeam.paper.printed import read_claims
+from rotbeam.paper.reproduction_figures import figD9_window
 from rotbeam.report.io import write_csv
 from rotbeam.report.joblog import job_log
-from rotbeam.report.reproduction_figures import figD9_window
 
 with job_log(snakemake.log[0], snakemake.input, snakemake.output, snakemake.rule) as log:
     _, claims = read_claims(snakemake.input.claims)

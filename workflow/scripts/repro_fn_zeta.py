@@ -4,9 +4,9 @@
 # (`snakemake` is injected by Snakemake)
 import pandas as pd
 
-from rotbeam.analysis.hypotheses import fn_zeta_study
-from rotbeam.analysis.paper_claims import read_claims
 from rotbeam.model.params import Beam
+from rotbeam.paper.hypotheses import fn_zeta_study
+from rotbeam.paper.printed import read_claims
 from rotbeam.report.io import write_csv, write_table
 from rotbeam.report.joblog import job_log
 

@@ -2,8 +2,8 @@
 
 # ruff: noqa: F821
 # (`snakemake` is injected by Snakemake)
-from rotbeam.analysis.stretch_study import stretch_study
 from rotbeam.model.params import Beam, Effects
+from rotbeam.paper.stretch_study import stretch_study
 from rotbeam.report.io import write_table
 from rotbeam.report.joblog import job_log
 from rotbeam.solve.numerics import Numerics

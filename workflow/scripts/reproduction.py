@@ -6,7 +6,7 @@ import json
 
 import pandas as pd
 
-from rotbeam.analysis.claims import (
+from rotbeam.paper.claims import (
     HYPOTHESIS_COLUMNS,
     Outputs,
     builtin_hypotheses,
@@ -14,10 +14,10 @@ from rotbeam.analysis.claims import (
     judge,
     ours_values,
 )
-from rotbeam.analysis.paper_claims import read_claims
+from rotbeam.paper.printed import read_claims
+from rotbeam.paper.reproduction_figures import claims_markdown
 from rotbeam.report.io import write_csv, write_text
 from rotbeam.report.joblog import job_log
-from rotbeam.report.reproduction_figures import claims_markdown
 
 with job_log(snakemake.log[0], snakemake.input, snakemake.output, snakemake.rule) as log:
     inp = snakemake.input

@@ -6,12 +6,12 @@ from pathlib import Path
 
 import pandas as pd
 
-from rotbeam.analysis.surrogate_study import discretisation_floor, southwell_table
 from rotbeam.model.params import Beam
 from rotbeam.model.surrogate import southwell_coefficient
+from rotbeam.paper.surrogate_figures import southwell_figure
+from rotbeam.paper.surrogate_study import discretisation_floor, southwell_table
 from rotbeam.report.io import write_table
 from rotbeam.report.joblog import job_log
-from rotbeam.report.surrogate_figures import southwell_figure
 
 with job_log(snakemake.log[0], snakemake.input, snakemake.output, snakemake.rule) as log:
     p = snakemake.params

@@ -7,17 +7,17 @@ from pathlib import Path
 
 import pandas as pd
 
-from rotbeam.analysis.surrogate_study import (
+from rotbeam.model.params import Effects
+from rotbeam.paper.surrogate_figures import vs_full_figure
+from rotbeam.paper.surrogate_study import (
     full_critical,
     surrogate_boundary,
     surrogate_curve,
     validity_statement,
     vs_full_table,
 )
-from rotbeam.model.params import Effects
 from rotbeam.report.io import write_csv, write_json, write_table
 from rotbeam.report.joblog import job_log
-from rotbeam.report.surrogate_figures import vs_full_figure
 
 with job_log(snakemake.log[0], snakemake.input, snakemake.output, snakemake.rule) as log:
     p = snakemake.params

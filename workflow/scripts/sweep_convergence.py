@@ -4,9 +4,9 @@ other (column `N` tells them apart with `omega0`)."""
 # ruff: noqa: F821
 # (`snakemake` is injected by Snakemake)
 from rotbeam.model.params import Effects
+from rotbeam.paper.studies import run_convergence_lines
 from rotbeam.report.io import write_csv
 from rotbeam.report.joblog import job_log
-from rotbeam.simulate.studies import run_convergence_lines
 
 with job_log(snakemake.log[0], snakemake.input, snakemake.output, snakemake.rule) as log:
     df = run_convergence_lines(

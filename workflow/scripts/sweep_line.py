@@ -3,9 +3,9 @@
 # (`snakemake` is injected by Snakemake)
 
 from rotbeam.model.params import Effects
+from rotbeam.paper.studies import run_line, scan_frequencies
 from rotbeam.report.io import write_csv
 from rotbeam.report.joblog import job_log
-from rotbeam.simulate.studies import run_line, scan_frequencies
 from rotbeam.simulate.sweeps import numerics_from_config
 
 with job_log(snakemake.log[0], snakemake.input, snakemake.output, snakemake.rule) as log:

@@ -5,7 +5,7 @@
 import pandas as pd
 
 from rotbeam.model.params import Beam
-from rotbeam.model.secondorder import systems_table
+from rotbeam.paper.appendix_e import systems_table
 from rotbeam.report.io import write_table
 from rotbeam.report.joblog import job_log
 

@@ -4,8 +4,8 @@
 # (`snakemake` is injected by Snakemake)
 import pandas as pd
 
-from rotbeam.analysis.paper_claims import read_claims
 from rotbeam.model.params import Beam
+from rotbeam.paper.printed import read_claims
 from rotbeam.report.io import write_table
 from rotbeam.report.joblog import job_log
 

@@ -18,11 +18,11 @@ from dataclasses import replace
 import numpy as np
 import pandas as pd
 
+from ..analysis.verdict import critical_frequency
 from ..model.grid import centrifugal_strain
 from ..model.params import Beam, Dimensionless, Drive, Effects, omega0_for_cmax
 from ..simulate.scene import Scene, simulate
 from ..solve.numerics import Numerics
-from .verdict import critical_frequency
 
 COLUMNS = ["C_max", "omega0", "clamp_strain", "studied", "f_d_star_off", "f_d_star_on",
            "f_d_star_change", "rms_off", "rms_on", "rms_change", "delta_off", "delta_on",

@@ -1,6 +1,6 @@
 """The one-mode surrogate (Sec. 6) beside the full model: the tables of the surrogate study.
 
-Two studies (their figures are `rotbeam.report.surrogate_figures`; the workflow's scripts only
+Two studies (their figures are `rotbeam.paper.surrogate_figures`; the workflow's scripts only
 read, call and write):
 
 * `southwell_table`: the Southwell line f_0 (Eq. centrifugal_stiffening) against the exact first
@@ -23,6 +23,7 @@ from collections.abc import Mapping, Sequence
 import numpy as np
 import pandas as pd
 
+from ..analysis.boundary import boundary_table
 from ..config.errors import RotbeamInputError
 from ..model.criterion import critical_from_scan
 from ..model.modes import natural_frequencies_hz
@@ -35,7 +36,6 @@ from ..model.surrogate import (
     southwell_frequency_hz,
     steady_rms,
 )
-from .boundary import boundary_table
 
 # --- Southwell line vs exact frequencies -----------------------------------------------------
 

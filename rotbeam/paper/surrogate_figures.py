@@ -1,6 +1,6 @@
 """Figures of the one-mode surrogate (Sec. 6) beside the full model.
 
-The tables they draw are built in `rotbeam.analysis.surrogate_study`:
+The tables they draw are built in `rotbeam.paper.surrogate_study`:
 
 * `southwell_figure`: the Southwell line f_0 against the exact first in-plane frequency over
   C_max, with the resonance peaks of full sweep lines (`southwell_table`).
@@ -18,7 +18,7 @@ import pandas as pd
 
 from ..model.params import Beam
 from ..model.surrogate import southwell_frequency_hz
-from .style import ACCENT, DYN, GREY, QS, apply_style, figure, panel_label, save
+from ..report.style import ACCENT, DYN, GREY, QS, apply_style, figure, panel_label, save
 
 
 def southwell_figure(table: pd.DataFrame, beam: dict, N: int, pdf: str, png: str) -> None:

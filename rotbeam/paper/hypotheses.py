@@ -1,7 +1,7 @@
 """Hypotheses for the paper's numbers that this model does not reproduce, computed, not argued.
 
 Each study returns a detail table and a long table of (claim, hypothesis, value, note) rows that
-`rotbeam.analysis.claims.judge` holds against the printed value.
+`rotbeam.paper.claims.judge` holds against the printed value.
 
 f_n and zeta scale with the printed inputs as (b cancels in f_n; A = b h, I = b h^3/12)
 
@@ -210,7 +210,7 @@ def fig7_variant_study(
     """Per (damping, geometry) hypothesis: boundary of its grid from its sweep lines, how many
     beams collapse on c_ref sqrt(1 + x) within `within`, and c fitted over its beams.  Returns
     (table, long hypothesis table, per-hypothesis boundary tables)."""
-    from .boundary import boundary_table, fit_c
+    from ..analysis.boundary import boundary_table, fit_c
     from .collapse import collapse_by_beam
 
     rows, hyp, tables = [], [], {}

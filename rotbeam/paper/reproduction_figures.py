@@ -8,8 +8,8 @@ import math
 import numpy as np
 import pandas as pd
 
-from ..analysis.collapse import collapse_by_beam, scaled_abscissa
-from .style import ACCENT, GREY, figure, panel_label, save
+from ..report.style import ACCENT, GREY, figure, panel_label, save
+from .collapse import collapse_by_beam, scaled_abscissa
 
 
 def _scaled(boundary: pd.DataFrame, threshold: float) -> pd.DataFrame:
@@ -118,13 +118,13 @@ def _rect(x0, x1, y0, y1):
 
 def claims_markdown(table: pd.DataFrame) -> str:
     """The claims table as Markdown, with a count of each status on top."""
-    from .io import markdown_table
+    from ..report.io import markdown_table
 
     counts = table["status"].value_counts()
     head = ", ".join(f"{counts.get(s, 0)} {s}" for s in ("reproduced", "explained", "unexplained"))
     return (
         "# Paper against reproduction\n\n"
-        f"{len(table)} claims: {head}.  Printed values: workflow/resources/paper_claims.yaml; "
+        f"{len(table)} claims: {head}.  Printed values: rotbeam/paper/paper_claims.yaml; "
         "ours: this workflow's outputs; explanation: the band, and every hypothesis tried.\n\n"
         + markdown_table(table)
     )

@@ -6,7 +6,7 @@
                   within that same tolerance (explained_value; the others tried are listed)
     unexplained   neither; every hypothesis tried and what it gave is in `explanation`
 
-Printed values come from one data file (workflow/resources/paper_claims.yaml); "ours" values are
+Printed values come from one data file (rotbeam/paper/paper_claims.yaml); "ours" values are
 read from the workflow's outputs by `ours_values`; hypotheses come from the studies as a long
 table (claim, hypothesis, value, note).  Pure functions on DataFrames and dicts.
 """
@@ -22,7 +22,7 @@ import pandas as pd
 from ..model.criterion import power_spectrum
 from .collapse import collapse_fraction
 from .hypotheses import plateau
-from .paper_claims import KINDS
+from .printed import KINDS
 
 COLUMNS = ["id", "source", "paper", "ours", "unit", "status", "explained_value", "explanation"]
 HYPOTHESIS_COLUMNS = ["claim", "hypothesis", "value", "note"]
@@ -154,7 +154,7 @@ class Outputs:
     main_threshold: float = 0.10
     amplitude: float = 1.0
     convergence_tolerance: float = 0.01
-    stretch: pd.DataFrame | None = None  #: rotbeam.analysis.stretch_study's table
+    stretch: pd.DataFrame | None = None  #: rotbeam.paper.stretch_study's table
     extra: dict = field(default_factory=dict)
 
 

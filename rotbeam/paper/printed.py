@@ -1,4 +1,5 @@
-"""The paper's printed values: reading and checking workflow/resources/paper_claims.yaml.
+"""The paper's printed values: reading and checking rotbeam/paper/paper_claims.yaml, the one
+data file that holds them.
 
 One row per claim (id, source in the paper, printed value, unit, tolerance and its kind) plus the
 printed inputs the studies start from.  Kept apart from `claims` (which judges ours against them)
@@ -46,8 +47,25 @@ def load_claims(data: dict[str, Any]) -> tuple[dict[str, dict], pd.DataFrame]:
     return dict(data.get("inputs") or {}), pd.DataFrame(rows)
 
 
-def read_claims(path: str | Path) -> tuple[dict[str, dict], pd.DataFrame]:
-    """`load_claims` of the file at `path` (workflow/resources/paper_claims.yaml)."""
+#: the printed values, shipped with the package
+CLAIMS_FILE = Path(__file__).with_name("paper_claims.yaml")
+
+
+def read_claims(path: str | Path = CLAIMS_FILE) -> tuple[dict[str, dict], pd.DataFrame]:
+    """`load_claims` of the file at `path` (default: the packaged paper_claims.yaml).
+
+    Parameters
+    ----------
+    path : str or Path
+        A claims file.
+
+    Returns
+    -------
+    inputs : dict
+        The printed inputs, by name.
+    claims : pandas.DataFrame
+        One row per claim.
+    """
     return load_claims(load_yaml(Path(path).read_text()))
 
 

@@ -5,8 +5,8 @@ default_steps(M) when the first try's spread is too large), that spread, and |mu
 pass as taken and from default_steps(M), each against the same rule converged in the step
 count (16 M steps), with their CPU seconds side by side (best of `repeats`, one process).
 
-    python3 -m rotbeam.bench.floquet_steps [repeats]
-    python3 -m rotbeam.bench.floquet_steps --column E100000_L0.01 [config/config.yaml]
+    python3 -m rotbeam.paper.floquet_steps [repeats]
+    python3 -m rotbeam.paper.floquet_steps --column E100000_L0.01 [config/config.yaml]
 
 The second form takes the passes of one (E, L) column of the Fig. 7 grid instead (the config's
 fig7 beams, c_max lines, amplitude, numerics and effects; one repeat).
@@ -22,12 +22,12 @@ from pathlib import Path
 
 import pandas as pd
 
+from ..bench.plan import SCENES
+from ..bench.stability_cost import WORKFLOW_NUMERICS
 from ..config.errors import RotbeamInputError
 from ..model.params import Beam, Drive, Effects
 from ..simulate.scene import Scene, simulate
 from ..solve import floquet
-from .plan import SCENES
-from .stability_cost import WORKFLOW_NUMERICS
 
 
 @contextmanager
@@ -89,8 +89,8 @@ def step_table(scenes=SCENES, repeats: int = 3) -> pd.DataFrame:
 def column_table(column: str, config_path: str = "config/config.yaml") -> pd.DataFrame:
     """One row per Floquet pass of a Fig. 7 grid column, as `sweep_grid_column` runs it."""
     from ..config.scenefile import load_yaml
-    from ..simulate.studies import fig7_beams, grid_columns, run_grid_lines
     from ..simulate.sweeps import numerics_from_config
+    from .studies import fig7_beams, grid_columns, run_grid_lines
 
     path = Path(config_path)
     if not path.is_file():

@@ -13,7 +13,7 @@ from matplotlib.ticker import NullFormatter
 
 from ..model.criterion import power_spectrum
 from ..model.params import Beam, Drive
-from .style import ACCENT, DYN, GREY, QS, apply_style, figure, panel_label, plt, save
+from ..report.style import ACCENT, DYN, GREY, QS, apply_style, figure, panel_label, plt, save
 
 
 def fig1_drive(omega0: float, amplitude: float, f_d: float, pdf: str, png: str) -> None:

@@ -8,9 +8,9 @@ import math
 import numpy as np
 import pandas as pd
 
-from ..analysis.c_hypotheses import PAPER_C, PAPER_C_ERR
-from .io import markdown_table
-from .style import figure, plt, save
+from ..report.io import markdown_table
+from ..report.style import figure, plt, save
+from .c_hypotheses import PAPER_C, PAPER_C_ERR
 
 
 def wide_table(table: pd.DataFrame) -> pd.DataFrame:

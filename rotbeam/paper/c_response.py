@@ -1,4 +1,4 @@
-"""What one hypothesis of `rotbeam.analysis.c_hypotheses` measures in one scene: the dynamic
+"""What one hypothesis of `rotbeam.paper.c_hypotheses` measures in one scene: the dynamic
 Theta (collocated orbit, integrator steps or a run from rest, of our model or a printed-appendix
 variant), the quasi-static Theta (same grid or continuum) and y_m read off either of them.
 
@@ -17,7 +17,6 @@ from scipy.integrate import solve_ivp
 
 from ..model.base import DiscreteModel
 from ..model.elastica import DiscreteElastica
-from ..model.elastica_printed import PrintedElastica
 from ..model.grid import Grid
 from ..model.params import Dimensionless
 from ..solve.extrapolation import richardson
@@ -27,6 +26,7 @@ from ..solve.quasistatic import quasistatic_series
 from ..solve.spectral import harmonic_tail, trig_interpolate
 from ..solve.steady import steady_state
 from ..solve.system import FirstOrderSystem
+from .printed_model import PrintedElastica
 
 MEASURES = ("y", "lab", "chord")
 

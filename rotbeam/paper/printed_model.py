@@ -17,7 +17,7 @@ time or together, what the printed appendix has where `rotbeam.model.elastica` d
 * ``Kds``: K with 1/ds instead of 1/ds^2 (bending stiffness divided by N).
 
 The fourth printed slip, +2 I y_t in the n_y integrand of Eq. (NumT), only acts with Coriolis on
-(the paper switches Coriolis off): see `rotbeam.analysis.c_hypotheses` ("printed_ny_coriolis").
+(the paper switches Coriolis off): see `rotbeam.paper.c_hypotheses` ("printed_ny_coriolis").
 
 Every solver takes such a model as it takes ours (`rotbeam.model.base.DiscreteModel`).
 """
@@ -29,8 +29,8 @@ from dataclasses import replace
 import numpy as np
 
 from ..config.errors import RotbeamInputError
-from .elastica import DiscreteElastica
-from .params import Dimensionless
+from ..model.elastica import DiscreteElastica
+from ..model.params import Dimensionless
 
 MISPRINTS = ("bracket", "U3", "symS", "Kds")
 
