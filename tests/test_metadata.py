@@ -1,6 +1,7 @@
 """What a person adopting rotbeam reads besides the code: one version everywhere it is written
 (pyproject.toml is the source; the installed metadata, `rotbeam.__version__`, CITATION.cff and
-CHANGELOG.md follow it) and the licence files the metadata names."""
+CHANGELOG.md follow it), the licence files the metadata names, and a line in config/README.md
+for every key of config/config.yaml."""
 
 import importlib.metadata
 import re
@@ -62,3 +63,22 @@ def test_licence_files_exist_and_are_named_in_the_metadata():
         "Copyright (c) 2001-2002 Enthought, Inc. 2003, SciPy Developers."
     )
     assert "LICENSES/scipy.txt" in (ROOT / "LICENSE").read_text()
+
+
+def test_every_config_key_has_a_line_in_config_readme():
+    config = yaml.safe_load((ROOT / "config" / "config.yaml").read_text())
+    readme = (ROOT / "config" / "README.md").read_text()
+    # a top-level key heads a row of a table
+    rows = set(re.findall(r"^\| `([^`]+)` \|", readme, re.M))
+    missing = [key for key in config if key not in rows]
+    assert not missing, f"config/README.md has no row for {missing}"
+    # a key of a section is named in its row, or in a table of its own
+    named = set(re.findall(r"`([^`\s]+)`", readme))
+    missing = [
+        f"{section}.{key}"
+        for section, value in config.items()
+        if isinstance(value, dict)
+        for key in value
+        if key not in named
+    ]
+    assert not missing, f"config/README.md does not name {missing}"
