@@ -66,6 +66,14 @@ except WorkflowError:
 PACKAGE_DIR = Path(rotbeam.__file__).parent
 SCRIPTS_DIR = Path(workflow.basedir) / "workflow" / "scripts"
 
+# The jobs run this same package, also in a conda env (--use-conda), which holds the numerical
+# stack but not rotbeam: Snakemake appends its own sys.path to every script job's, and an
+# editable install is found through an import hook that a job's interpreter does not load, so
+# the package's directory goes on that path here.  Whatever directory snakemake runs in, a job
+# imports the code code_version hashes.
+if str(PACKAGE_DIR.parent) not in sys.path:
+    sys.path.append(str(PACKAGE_DIR.parent))
+
 
 @functools.cache
 def code_version(script):
