@@ -1,3 +1,9 @@
+# SPDX-License-Identifier: BSD-3-Clause
+# Copyright (c) 2026, rotbeam contributors.  The helpers below "Helpers of scipy's own implicit
+# solvers" (validate_first_step, validate_max_step, warn_extraneous, validate_tol, norm,
+# select_initial_step, num_jac) are adapted from SciPy (scipy/integrate/_ivp/common.py, SciPy
+# 1.17), Copyright (c) 2001-2002 Enthought, Inc. 2003, SciPy Developers, BSD-3-Clause: see
+# LICENSES/scipy.txt.
 """TR-BDF2: a one-step, second-order, L-stable implicit integrator for `solve_ivp`.
 
 This is the method of MATLAB's ode23tb (M. E. Hosea and L. F. Shampine, "Analysis and
@@ -383,7 +389,7 @@ def fixed_steps(
 
 # Helpers of scipy's own implicit solvers (scipy/integrate/_ivp/common.py, scipy 1.17), copied
 # because that module is private and may change without notice.  Copyright (c) 2001-2002
-# Enthought, Inc. 2003, SciPy Developers; BSD 3-clause licence (scipy's LICENSE.txt).  Changes:
+# Enthought, Inc. 2003, SciPy Developers; BSD 3-clause licence (LICENSES/scipy.txt).  Changes:
 # num_jac has only the dense path, and a `jac_sparsity` structure zeroes the entries outside it
 # instead of grouping columns (the same values, n evaluations of f instead of fewer).
 EPS = np.finfo(float).eps
