@@ -84,7 +84,8 @@ CLI_CASES = {
     "fd zero": (["simulate", "--omega0", "5", "--fd", "0"], ["--fd", "0.0", "> 0"]),
     "R zero": (SIM + ["--R", "0"], ["--R", "0.0", "> 0"]),
     "rtol zero": (SIM + ["--rtol", "0"], ["--rtol", "0.0", "[1e-13, 0.1]"]),
-    "modes k zero": (["modes", "--k", "0"], ["--k", "0", "[1, N-1=79]"]),
+    "modes k zero": (["modes", "--k", "0"], ["--k", "0", ">= 1"]),
+    "modes k past the grid": (["modes", "--k", "40"], ["--k", "40", "[1, N-1=39]"]),
     # NaN and inf
     "fd nan": (["simulate", "--omega0", "5", "--fd", "nan"], ["--fd", "'nan'", "finite"]),
     "omega0 nan": (["simulate", "--omega0", "NaN", "--fd", "2"], ["--omega0", "'NaN'", "finite"]),
@@ -150,7 +151,7 @@ def test_cli_bad_input_is_one_line_exit_2(argv, words):
 def test_cli_subprocess_one_line_exit_2(argv, words):
     """The console entry point itself (no warnings, no traceback on stderr)."""
     p = subprocess.run(
-        [sys.executable, "-m", "rotbeam.cli", *argv], capture_output=True, text=True, timeout=120
+        [sys.executable, "-m", "rotbeam", *argv], capture_output=True, text=True, timeout=120
     )
     one_clear_line(p.returncode, p.stderr, words)
 

@@ -9,6 +9,7 @@ import pytest
 
 from rotbeam.config.errors import RotbeamInputError
 from rotbeam.model.elastica import DiscreteElastica
+from rotbeam.model.modes import resonance_frequency_hz
 from rotbeam.model.params import Beam, Dimensionless, Drive, omega0_for_cmax
 from rotbeam.paper.c_hypotheses import (
     GridRule,
@@ -22,7 +23,6 @@ from rotbeam.paper.c_hypotheses import (
 )
 from rotbeam.paper.c_response import continuum_quasistatic_theta
 from rotbeam.paper.printed_model import PrintedElastica
-from rotbeam.simulate.sweeps import resonance_frequency_hz
 from rotbeam.solve.numerics import Numerics
 from rotbeam.solve.static_bvp import solve_static_bvp
 

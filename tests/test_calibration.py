@@ -31,7 +31,7 @@ RHOA = Beam().rhoA
 
 def run(*args):
     return subprocess.run(
-        [sys.executable, "-m", "rotbeam.cli", *args], capture_output=True, text=True, timeout=900
+        [sys.executable, "-m", "rotbeam", *args], capture_output=True, text=True, timeout=900
     )
 
 
@@ -269,7 +269,9 @@ def test_uncertainty_section_of_scene_file(tmp_path):
 def test_fd_star_interval_against_brute_force():
     """f_d* at Omega_0 = 5 rad/s (N = 10) with gamma = 0.039 +- 0.008 and E = 1.22 +- 0.05 MPa:
     the linearised and the Sobol-32 sd against 64 plain runs at pseudo-random normal inputs."""
-    from rotbeam.analysis.verdict import critical_frequency
+    from rotbeam.analysis.verdict import critical
+    from rotbeam.model.params import Drive
+    from rotbeam.simulate.scene import Scene
     from rotbeam.solve.numerics import Numerics
 
     spread = "gamma=0.039+-0.008,E=1.22e6+-0.05e6"
@@ -285,7 +287,7 @@ def test_fd_star_interval_against_brute_force():
     for _ in range(64):
         beam = Beam(gamma=0.039 + 0.008 * rng.standard_normal(),
                     E=1.22e6 + 0.05e6 * rng.standard_normal())  # fmt: skip
-        res = critical_frequency(beam, 5.0, 0.10, 1.0, None, num, 1e-3)
+        res = critical(Scene(beam, Drive(omega0=5.0, amplitude=1.0), numerics=num), 0.10, 1e-3)
         assert res.found, res.message
         brute.append(res.f_d_star)
     brute = np.array(brute)

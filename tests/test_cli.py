@@ -10,7 +10,7 @@ import pytest
 
 def run(*args):
     return subprocess.run(
-        [sys.executable, "-m", "rotbeam.cli", *args], capture_output=True, text=True, timeout=300
+        [sys.executable, "-m", "rotbeam", *args], capture_output=True, text=True, timeout=300
     )
 
 
@@ -118,7 +118,7 @@ def test_cli_critical_json():
     "flags, words",
     [
         (["--omega0", "5", "--threshold", "1"], ["--threshold", "(0, 1)"]),
-        (["--omega0", "5", "--ftol", "0.5"], ["--ftol", "[1e-8, 0.1]", "0.5"]),
+        (["--omega0", "5", "--ftol", "0.5"], ["--ftol", "[1e-08, 0.1]", "0.5"]),
         (["--omega0", "5", "--fd", "2"], ["unrecognized arguments: --fd 2"]),
         ([], ["drive.omega0", "missing", "--omega0"]),
         (["--omega0", "5", "--N", "2"], ["numerics.N", "[3, 2000]"]),

@@ -55,7 +55,7 @@ def test_centrifugal_share_against_one_mode_estimate(omega0):
 
 
 def test_effects_cli_json_and_bad_input():
-    run = [sys.executable, "-m", "rotbeam.cli", "effects", "--omega0", "5", "--fd", "15"]
+    run = [sys.executable, "-m", "rotbeam", "effects", "--omega0", "5", "--fd", "15"]
     p = subprocess.run(run + ["--N", "8", "--json"], capture_output=True, text=True, timeout=300)
     assert p.returncode == 0, p.stderr
     out = json.loads(p.stdout)
@@ -82,7 +82,7 @@ def test_auto_effects_tol_zero_keeps_every_effect_and_default_drops_coriolis():
 
 
 def test_simulate_effects_auto_cli():
-    run = [sys.executable, "-m", "rotbeam.cli", "simulate", "--omega0", "5", "--fd", "2",
+    run = [sys.executable, "-m", "rotbeam", "simulate", "--omega0", "5", "--fd", "2",
            "--N", "8", "--json", "--effects"]  # fmt: skip
     p = subprocess.run(run + ["auto"], capture_output=True, text=True, timeout=300)
     assert p.returncode == 0, p.stderr
@@ -94,7 +94,7 @@ def test_simulate_effects_auto_cli():
 
 
 def _cli(*argv: str, timeout: float = 300) -> subprocess.CompletedProcess:
-    return subprocess.run([sys.executable, "-m", "rotbeam.cli", *argv], capture_output=True,
+    return subprocess.run([sys.executable, "-m", "rotbeam", *argv], capture_output=True,
                           text=True, timeout=timeout)  # fmt: skip
 
 

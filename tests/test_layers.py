@@ -41,6 +41,8 @@ def layer_of(module: str) -> str | None:
     parts = module.split(".")
     if parts[0] != "rotbeam":
         return None
+    if parts[1:2] == ["__main__"]:  # `python -m rotbeam`: the command line
+        return "cli"
     return parts[1] if len(parts) > 1 else "root"
 
 

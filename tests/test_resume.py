@@ -164,7 +164,7 @@ def test_figures_and_time_series_are_written_through_the_atomic_writer(tmp_path)
     temporary name ends in .part (matplotlib would refuse 'part'), nothing is left beside it."""
     import matplotlib.pyplot as plt
 
-    from rotbeam.cli import _write_series
+    from rotbeam.report.io import write_series
     from rotbeam.report.style import save
 
     fig, ax = plt.subplots()
@@ -172,7 +172,7 @@ def test_figures_and_time_series_are_written_through_the_atomic_writer(tmp_path)
     save(fig, tmp_path / "f.pdf", tmp_path / "f.png")
     assert (tmp_path / "f.pdf").read_bytes()[:5] == b"%PDF-"
     assert (tmp_path / "f.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
-    _write_series(str(tmp_path / "s" / "series.csv"), {"t_s": np.arange(3.0), "y": np.ones(3)})
+    write_series(str(tmp_path / "s" / "series.csv"), {"t_s": np.arange(3.0), "y": np.ones(3)})
     assert pd.read_csv(tmp_path / "s" / "series.csv").shape == (3, 2)
     names = sorted(f.name for f in tmp_path.rglob("*") if f.is_file())
     assert names == ["f.pdf", "f.png", "series.csv"]

@@ -16,6 +16,7 @@ from conftest import ROOT, snakemake
 
 from rotbeam.config.schema import merge_config
 from rotbeam.model.criterion import critical_from_scan
+from rotbeam.model.modes import resonance_frequency_hz
 from rotbeam.model.params import Beam, Dimensionless, Drive, Effects, drive_groups
 from rotbeam.model.surrogate import steady_rms
 from rotbeam.paper.surrogate_figures import southwell_figure, vs_full_figure
@@ -27,7 +28,6 @@ from rotbeam.paper.surrogate_study import (
     validity_statement,
     vs_full_table,
 )
-from rotbeam.simulate.sweeps import resonance_frequency_hz
 
 BEAM = {"L": 0.040, "h": 0.002, "b": 0.010, "E": 1.22e6, "rho": 1170.2, "R": 0.155, "gamma": 0.039}
 

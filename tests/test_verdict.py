@@ -9,7 +9,7 @@ import math
 import numpy as np
 import pytest
 
-from rotbeam.analysis.verdict import _lag_ratio, critical_frequency, judge
+from rotbeam.analysis.verdict import _lag_ratio, critical, judge
 from rotbeam.model.criterion import critical_from_scan
 from rotbeam.model.params import Beam, Drive, Effects
 from rotbeam.model.secondorder import delta_rms_canonical
@@ -72,10 +72,10 @@ def test_overdamped_beam_gets_the_lag_branch_estimate_and_a_verdict():
 
 
 @pytest.mark.parametrize("omega0", [5.0, 50.0])
-def test_critical_frequency_equals_the_root_of_a_dense_scan(omega0):
+def test_critical_equals_the_root_of_a_dense_scan(omega0):
     """Root finding on the full model against the workflow's route: a 21-point scan and the root
     of its PCHIP interpolant (criterion.critical_from_scan)."""
-    crit = critical_frequency(Beam(), omega0, numerics=NUM, rtol=1e-5)
+    crit = critical(Scene(Beam(), Drive(omega0=omega0), numerics=NUM), rtol=1e-5)
     assert crit.found and len(crit.visited) <= 12, crit
     df = scan_line(Beam(), omega0, crit.f0_hz * np.linspace(0.2, 0.45, 21), numerics=NUM)
     scan = critical_from_scan(df["f_d"], df["delta_rms"], 0.10)
@@ -92,13 +92,13 @@ def test_lag_ratio_solves_the_overdamped_branch():
             assert delta_rms_canonical(_lag_ratio(zeta, th), zeta) == pytest.approx(-th, abs=1e-12)
 
 
-def test_overdamped_critical_frequency():
+def test_overdamped_critical():
     """The tiny Fig. 7 beam (zeta 35.5) has no App. E root; its boundary is where the dynamic
     response lags the static one by the threshold, and the full model brackets it there."""
     ref = Beam()
     h = 0.01 * 1e-4
     tiny = Beam(L=1e-4, h=h, b=ref.b / ref.h * h, E=1e9)
-    crit = critical_frequency(tiny, 5.0, numerics=NUM)
+    crit = critical(Scene(tiny, Drive(omega0=5.0), numerics=NUM))
     assert crit.found
     assert crit.estimate_hz == pytest.approx(_lag_ratio(tiny.derived()["zeta"], 0.1) * crit.f0_hz)
     assert crit.f_d_star == pytest.approx(crit.estimate_hz, rel=0.05)
@@ -107,7 +107,7 @@ def test_overdamped_critical_frequency():
     assert below.quasistatic_ok is True and above.quasistatic_ok is False
 
 
-def test_critical_frequency_without_a_steady_state_says_so():
-    crit = critical_frequency(Beam(gamma=0.0), 5.0, numerics=NUM)
+def test_critical_without_a_steady_state_says_so():
+    crit = critical(Scene(Beam(gamma=0.0), Drive(omega0=5.0), numerics=NUM))
     assert not crit.found and math.isnan(crit.f_d_star)
     assert crit.message.startswith("no steady state")

@@ -28,6 +28,7 @@ import time
 from dataclasses import dataclass, field, fields, replace
 from typing import Any
 
+from ..config.errors import RotbeamInputError
 from ..config.scenefile import AUTO_TOL as _AUTO_TOL
 from ..model.params import Effects
 from ..simulate.scene import Scene, SceneResult, simulate
@@ -216,3 +217,29 @@ def auto_effects(budget: EffectBudget, tol: float = AUTO_TOL) -> AutoEffects:
     dropped = [k for k, v in values.items() if not v and k in share]
     return AutoEffects(Effects(**values), kept, dropped, sum(share[k] for k in dropped), tol,
                        notes)  # fmt: skip
+
+
+def auto_scene(scene: Scene, tol: float = AUTO_TOL) -> tuple[Scene, AutoEffects, EffectBudget]:
+    """The scene with the effects its budget calls for (`auto_effects` at `tol`).
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene whose effects are budgeted (at its own drive frequency).
+    tol : float
+        Keep the effects whose |share of RMS(y_m)| is at least this.
+
+    Returns
+    -------
+    scene : Scene
+        The scene with the chosen effects.
+    auto : AutoEffects
+        What was kept and dropped, and what the dropped effects were worth.
+    budget : EffectBudget
+        The budget it rests on (its cost: `total_seconds`).
+    """
+    budget = effect_budget(scene)
+    if not budget.shares:
+        raise RotbeamInputError("effects auto: the scene has no steady state to share out")
+    auto = auto_effects(budget, tol)
+    return replace(scene, effects=auto.effects), auto, budget

@@ -32,9 +32,9 @@ from scipy.optimize import least_squares
 from scipy.stats import t as student_t
 
 from ..config.errors import RotbeamInputError
+from ..model.modes import resonance_frequency_hz
 from ..model.params import Beam, Drive, Effects
 from ..simulate.scene import Scene, simulate
-from ..simulate.sweeps import resonance_frequency_hz
 from ..solve.numerics import Numerics
 from .measurements import ResonanceCurve
 

@@ -25,12 +25,16 @@ import re
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, replace
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
-from scipy.stats import norm, qmc
 
 from ..config.errors import RotbeamInputError
 from ..model.params import Beam, Drive
+
+if TYPE_CHECKING:
+    from ..simulate.scene import Scene, SceneResult
+    from .verdict import Critical
 
 BEAM_FIELDS = ("L", "h", "b", "E", "rho", "R", "gamma")
 DRIVE_FIELDS = ("omega0", "amplitude")
@@ -130,6 +134,11 @@ class Propagated:
         return out
 
 
+def _normal_cdf(x: float) -> float:
+    """Phi(x), the standard normal distribution function."""
+    return 0.5 * math.erfc(-x / math.sqrt(2.0))
+
+
 def design(inputs: dict[str, tuple[float, float]], method: str, samples: int = 32
            ) -> list[dict[str, float]]:  # fmt: skip
     """The input values of every run: the plain run first, then the method's points."""
@@ -143,6 +152,8 @@ def design(inputs: dict[str, tuple[float, float]], method: str, samples: int = 3
         return [plain] + [plain | {k: inputs[k][0] + inputs[k][1]} for k in live]
     if samples < 2 or samples & (samples - 1):
         raise RotbeamInputError(f"uncertainty samples must be a power of two >= 2, got {samples}")
+    from scipy.stats import norm, qmc  # here: only a Sobol design needs scipy.stats (0.5 s)
+
     u = qmc.Sobol(len(live), scramble=True, seed=0).random(samples)
     z = norm.ppf(u)
     return [plain] + [
@@ -182,7 +193,7 @@ def summarise(method: str, inputs: dict[str, tuple[float, float]],
             p = float(d[0] < threshold)
         elif method == "linear":
             p = (
-                float(norm.cdf((threshold - mean["delta_rms"]) / sd["delta_rms"]))
+                _normal_cdf((threshold - mean["delta_rms"]) / sd["delta_rms"])
                 if sd["delta_rms"] > 0
                 else float(mean["delta_rms"] < threshold)
             )
@@ -205,3 +216,100 @@ def propagate(
     points = design(inputs, method, samples)
     outputs = [run(v) for v in points]
     return summarise(method, inputs, outputs, threshold, time.perf_counter() - t0)
+
+
+def read_inputs(section: Any, spec: str | None, where: str = "scene file") -> dict:
+    """{name: (mean, sd)} from a scene file's `uncertainty` section and a CLI spec (which wins).
+
+    Parameters
+    ----------
+    section : mapping or None
+        The scene file's section, e.g. {"gamma": "0.039 +- 0.008"}.
+    spec : str or None
+        "gamma=0.039+-0.008,E=1.22e6+-0.05e6".
+    where : str
+        Names the section's source in an error.
+
+    Returns
+    -------
+    dict
+        Input name -> (mean, sd).
+    """
+    if section is not None and not isinstance(section, dict):
+        raise RotbeamInputError(
+            f'{where}: uncertainty must be a mapping, e.g. uncertainty: {{gamma: "0.039 +- 0.008"}}'
+        )
+    return parse_spec(section) | parse_spec(spec)
+
+
+def at_means(scene: Scene, inputs: dict[str, tuple[float, float]]) -> Scene:
+    """The scene with every uncertain input at its mean (the plain run is the run there)."""
+    if not inputs:
+        return scene
+    beam, drive = apply(scene.beam, scene.drive, {k: m for k, (m, _) in inputs.items()})
+    return replace(scene, beam=beam, drive=drive)
+
+
+def simulate_spread(
+    scene: Scene,
+    plain: SceneResult,
+    inputs: dict[str, tuple[float, float]],
+    method: str = "linear",
+    samples: int = 32,
+    threshold: float = 0.10,
+) -> Propagated:
+    """RMS, Delta RMS and P(quasi-static) of a scene over its inputs' spread.
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene at the inputs' means (`at_means`).
+    plain : SceneResult
+        Its own result, reused for the plain run; its orbit seeds the others.
+    inputs : dict
+        Input name -> (mean, sd).
+    method : str
+        "linear" or "sobol".
+    samples : int
+        Sobol runs (a power of two).
+    threshold : float
+        Delta RMS below which a run counts as quasi-static.
+
+    Returns
+    -------
+    Propagated
+    """
+    from ..simulate.scene import simulate
+
+    orbit = plain.dynamic.periodic
+    guess = orbit.theta.T if orbit is not None and orbit.converged else None
+
+    def run(values: dict[str, float]) -> dict[str, float]:
+        beam, drive = apply(scene.beam, scene.drive, values)
+        res = plain if (beam, drive) == (scene.beam, scene.drive) else simulate(
+            replace(scene, beam=beam, drive=drive), guess=guess)  # fmt: skip
+        return {k: (getattr(res, k) if res.converged else float("nan"))
+                for k in ("rms_dynamic", "rms_quasistatic", "delta_rms")}  # fmt: skip
+
+    return propagate(inputs, run, method, samples, threshold)
+
+
+def critical_spread(
+    scene: Scene,
+    plain: Critical,
+    inputs: dict[str, tuple[float, float]],
+    method: str = "linear",
+    samples: int = 32,
+    threshold: float = 0.10,
+    ftol: float = 1e-3,
+) -> Propagated:
+    """f_d* and c = f_d* / f_0 over the inputs' spread (`plain`: the search at the means)."""
+    from .verdict import critical
+
+    def run(values: dict[str, float]) -> dict[str, float]:
+        beam, drive = apply(scene.beam, scene.drive, values)
+        same = (beam, drive) == (scene.beam, scene.drive)
+        res = plain if same else critical(replace(scene, beam=beam, drive=drive), threshold, ftol)
+        return {"f_d_star": res.f_d_star, "c": res.f_d_star / res.f0_hz, "f0_hz": res.f0_hz}
+
+    return propagate(inputs, run, method, samples, None)

@@ -16,7 +16,7 @@ A beam too damped for that root (its response never exceeds the static one by th
 crosses on the other branch of |Delta RMS|, where the response lags the static one by the
 threshold (`_lag_ratio`); the estimate then comes from there.
 
-`critical_frequency` answers the other way round: f_d* of the full model at one speed, by root
+`critical` answers the other way round: f_d* of the full model at one speed, by root
 finding started at that estimate (the CLI's `rotbeam critical`).
 The verdict's figure is `rotbeam.report.verdict_plot`.
 """
@@ -26,15 +26,14 @@ from __future__ import annotations
 import math
 import time
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 from ..config.checks import check_threshold
 from ..config.errors import RotbeamInputError
-from ..model.params import Beam, Drive, Effects
+from ..model.modes import resonance_frequency_hz
+from ..model.params import Beam
 from ..model.secondorder import c0_root
 from ..simulate.scene import Scene, SceneResult, simulate
-from ..simulate.sweeps import resonance_frequency_hz
-from ..solve.numerics import Numerics
 
 
 @dataclass(frozen=True)
@@ -135,28 +134,19 @@ MAX_STEPS = 12
 
 
 class _Excess:
-    """Delta RMS - threshold of the full model at one speed, as a function of f_d.  Each f_d runs
-    once (brentq evaluates the bracket ends again) and the last orbit seeds the next collocation;
-    a run without a steady state raises _NoSteadyState."""
+    """Delta RMS - threshold of the full model at the scene's speed, as a function of f_d.  Each
+    f_d runs once (brentq evaluates the bracket ends again) and the last orbit seeds the next
+    collocation; a run without a steady state raises _NoSteadyState."""
 
-    def __init__(
-        self,
-        beam: Beam,
-        omega0: float,
-        amplitude: float,
-        effects: Effects,
-        numerics: Numerics,
-        th: float,
-    ) -> None:
-        self.beam, self.omega0, self.amplitude = beam, omega0, amplitude
-        self.effects, self.numerics, self.th = effects, numerics, th
+    def __init__(self, scene: Scene, th: float) -> None:
+        self.scene, self.th = scene, th
         self.seen: dict[float, float] = {}  #: f_d -> Delta RMS, in the order run
         self.guess = None
 
     def __call__(self, f_d: float) -> float:
         if f_d not in self.seen:
-            drive = Drive(self.omega0, self.amplitude, f_d)
-            res = simulate(Scene(self.beam, drive, self.effects, self.numerics), guess=self.guess)
+            drive = replace(self.scene.drive, f_d=f_d)
+            res = simulate(replace(self.scene, drive=drive), guess=self.guess)
             if not res.converged or not math.isfinite(res.delta_rms):
                 raise _NoSteadyState(
                     f"no steady state at f_d = {f_d:.4g} Hz: {res.dynamic.message}"
@@ -185,13 +175,24 @@ def _bracket(
             f"steps of x{step:.3g})")  # fmt: skip
 
 
-def critical_start_hz(beam: Beam, omega0: float, threshold: float = 0.10,
-                      amplitude: float = 1.0) -> float:  # fmt: skip
-    """Where `critical_frequency` starts: the linear estimate of f_d* [Hz] (`linear_estimate`
-    times f_0 at omega0 + amplitude); `rotbeam critical --effects auto` budgets the effects here."""
-    return _linear_start(
-        beam, check_threshold(threshold), resonance_frequency_hz(beam, omega0, amplitude)
-    )
+def critical_start_hz(scene: Scene, threshold: float = 0.10) -> float:
+    """Where `critical` starts: the linear estimate of f_d* [Hz] (`linear_estimate` times f_0
+    at |Omega_0| + a); `rotbeam critical --effects auto` budgets the effects here.
+
+    Parameters
+    ----------
+    scene : Scene
+        The beam and the drive's speed and amplitude (its f_d is not read).
+    threshold : float
+        The Delta RMS threshold, in (0, 1).
+
+    Returns
+    -------
+    float
+    """
+    beam, drive = scene.beam, scene.drive
+    f0 = resonance_frequency_hz(beam, drive.omega0, drive.amplitude)
+    return _linear_start(beam, check_threshold(threshold), f0)
 
 
 def _linear_start(beam: Beam, threshold: float, f0: float) -> float:
@@ -199,36 +200,40 @@ def _linear_start(beam: Beam, threshold: float, f0: float) -> float:
     return linear_estimate(beam.derived()["zeta"], threshold)[1] * f0
 
 
-def critical_frequency(
-    beam: Beam,
-    omega0: float,
-    threshold: float = 0.10,
-    amplitude: float = 1.0,
-    effects: Effects | None = None,
-    numerics: Numerics | None = None,
-    rtol: float = 1e-3,
-) -> Critical:
-    """f_d* [Hz] of the full model at one speed, by root finding instead of a dense scan (the
-    full-model twin of `surrogate.critical_frequency`, same argument order).
+def critical(scene: Scene, threshold: float = 0.10, rtol: float = 1e-3) -> Critical:
+    """f_d* [Hz]: the drive frequency at which Delta RMS of the full model reaches `threshold`,
+    at the scene's speed and amplitude, by root finding instead of a dense scan.
 
     Starts at the linear estimate (App. E's c_0 f_0, within a few per cent on the reference
-    beam, or the lag branch for overdamped beams: `linear_estimate`),
-    steps by BRACKET_FACTOR until Delta RMS - threshold changes sign, then runs brentq to a
-    relative tolerance `rtol` in f_d.  This is the crossing nearest the estimate; it is the
-    paper's first crossing where Delta RMS rises monotonically below it, as on every line of the
-    full run.  A run without a steady state ends the search with found = False and its reason.
+    beam, or the lag branch for overdamped beams: `linear_estimate`), steps by BRACKET_FACTOR
+    until Delta RMS - threshold changes sign, then runs brentq to a relative tolerance `rtol`
+    in f_d.  This is the crossing nearest the estimate; it is the paper's first crossing where
+    Delta RMS rises monotonically below it.  A run without a steady state ends the search with
+    found = False and its reason.
+
+    Parameters
+    ----------
+    scene : Scene
+        Beam, drive (its f_d is where nothing starts: the search sets it), effects, numerics.
+    threshold : float
+        The Delta RMS threshold, in (0, 1).
+    rtol : float
+        Relative tolerance on f_d*, in [1e-8, 0.1].
+
+    Returns
+    -------
+    Critical
     """
     from scipy.optimize import brentq
 
     th = check_threshold(threshold)
-    effects = effects or Effects()
-    numerics = numerics or Numerics()
     if not (isinstance(rtol, float) and 1e-8 <= rtol <= 0.1):
         raise RotbeamInputError(f"rtol must be in [1e-8, 0.1], got {rtol!r}")
     t0 = time.perf_counter()
-    f0 = resonance_frequency_hz(beam, omega0, amplitude)
+    beam, drive = scene.beam, scene.drive
+    f0 = resonance_frequency_hz(beam, drive.omega0, drive.amplitude)
     start = estimate = _linear_start(beam, th, f0)
-    excess = _Excess(beam, omega0, amplitude, effects, numerics, th)
+    excess = _Excess(scene, th)
 
     def done(found: bool, f: float, msg: str) -> Critical:
         visited = list(excess.seen.items())

@@ -4,6 +4,7 @@
 from __future__ import annotations
 
 import math
+from pathlib import Path
 
 import numpy as np
 
@@ -42,3 +43,25 @@ def check_threshold(threshold: object, name: str = "threshold") -> float:
     if not (0.0 < t < 1.0):
         raise RotbeamInputError(f"{name} must be in (0, 1), got {threshold!r}")
     return t
+
+
+#: what the figures of rotbeam are written as
+PLOT_SUFFIXES = (".png", ".pdf", ".svg")
+
+
+def check_plot_suffix(path: str | Path) -> Path:
+    """A figure path whose suffix is one of PLOT_SUFFIXES (checked before any work).
+
+    Parameters
+    ----------
+    path : str or Path
+        Where a figure goes.
+
+    Returns
+    -------
+    Path
+    """
+    path = Path(path)
+    if path.suffix not in PLOT_SUFFIXES:
+        raise RotbeamInputError(f"--plot must end in {', '.join(PLOT_SUFFIXES)}, got {str(path)!r}")
+    return path

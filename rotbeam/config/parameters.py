@@ -32,10 +32,11 @@ class Param:
     hi: float | None = None
     lo_open: bool = False
     choices: tuple[str, ...] = ()
+    hi_open: bool = False
 
 
-def _real(default, help, unit="", lo=None, hi=None, lo_open=False) -> Param:
-    return Param("real", default, help, unit, lo, hi, lo_open)
+def _real(default, help, unit="", lo=None, hi=None, lo_open=False, hi_open=False) -> Param:
+    return Param("real", default, help, unit, lo, hi, lo_open, hi_open=hi_open)
 
 
 def _int(default, help, lo=None, hi=None) -> Param:
@@ -103,13 +104,54 @@ SECTIONS: dict[str, dict[str, Param]] = {
 }
 
 
+#: What a command asks beside its scene: the verdict's threshold, the f_d* search's tolerance,
+#: the classification run without a stable periodic state, the modes.  Not scene-file sections.
+OPTIONS: dict[str, dict[str, Param]] = {
+    "verdict": {
+        "threshold": _real(
+            0.10,
+            "Delta RMS below which quasi-static is good enough (the paper's)",
+            "",
+            0,
+            1,
+            lo_open=True,
+            hi_open=True,
+        ),  # fmt: skip
+    },
+    "critical": {
+        "ftol": _real(1e-3, "relative tolerance on f_d*", "", 1e-8, 0.1),
+    },
+    "response": {
+        "periods": _int(
+            40,
+            "without a stable periodic state: periods of transient, then as many "
+            "classified (Poincare section, Lyapunov exponent)",
+            1,
+        ),  # fmt: skip
+        "N": _int(
+            6,
+            "grid intervals of that classification run (at large drive the top bending "
+            "modes ring and set the step)",
+            4,
+            80,
+        ),  # fmt: skip
+    },
+    "modes": {
+        "omega": _real(0.0, "steady angular velocity", "rad/s"),
+        "count": _int(3, "number of modes", 1),
+    },
+}
+
+
 def param(section: str, name: str) -> Param:
-    return SECTIONS[section][name]
+    """The registry entry of one field: a scene section's or a command option's."""
+    table = SECTIONS.get(section)
+    return table[name] if table is not None else OPTIONS[section][name]
 
 
 def default(section: str, name: str) -> Any:
     """The default of one field (what the dataclasses use)."""
-    return SECTIONS[section][name].default
+    return param(section, name).default
 
 
 def allowed(p: Param) -> str:
@@ -126,16 +168,18 @@ def allowed(p: Param) -> str:
 def _bounds(p: Param) -> str:
     """ "in [lo, hi]", "> lo" or "<= hi": the words the schema messages use too."""
     if p.lo is not None and p.hi is not None:
-        return f"in {'(' if p.lo_open else '['}{g(p.lo)}, {g(p.hi)}]"
+        return f"in {'(' if p.lo_open else '['}{g(p.lo)}, {g(p.hi)}{')' if p.hi_open else ']'}"
     if p.lo is not None:
         return f"{'>' if p.lo_open else '>='} {g(p.lo)}"
-    return f"<= {g(p.hi)}" if p.hi is not None else ""
+    if p.hi is not None:
+        return f"{'<' if p.hi_open else '<='} {g(p.hi)}"
+    return ""
 
 
 def check_value(section: str, name: str, value: Any) -> Any:
     """`value` checked against the registry: returned as the field's type, or one line naming
     `section.name`, the value and what is allowed."""
-    p = SECTIONS[section][name]
+    p = param(section, name)
     key = f"{section}.{name}"
     if p.kind == "bool":
         if not isinstance(value, (bool, np.bool_)):
@@ -160,7 +204,7 @@ def check_value(section: str, name: str, value: Any) -> Any:
         if not math.isfinite(value):
             raise RotbeamInputError(f"{key} must be finite, got {value!r}")
     too_low = p.lo is not None and (value <= p.lo if p.lo_open else value < p.lo)
-    too_high = p.hi is not None and value > p.hi
+    too_high = p.hi is not None and (value >= p.hi if p.hi_open else value > p.hi)
     if too_low or too_high:
         raise RotbeamInputError(f"{key} must be {_bounds(p)}, got {value!r}")
     return value
@@ -173,8 +217,8 @@ def check_fields(obj: object, section: str) -> None:
 
 
 def help_text(section: str, name: str) -> str:
-    """`help [unit] (default ...)` for a CLI flag."""
-    p = SECTIONS[section][name]
+    """`help [unit] (default ...; allowed ...)` for a CLI flag."""
+    p = param(section, name)
     unit = f" [{p.unit}]" if p.unit else ""
     shown = f"{p.default:g}" if p.kind in ("real", "int") else str(p.default)
-    return f"{p.help}{unit} (default {shown})"
+    return f"{p.help}{unit} (default {shown}; {allowed(p)})"

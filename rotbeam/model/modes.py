@@ -159,3 +159,23 @@ def linear_forced_response(model: DiscreteModel) -> tuple[np.ndarray, np.ndarray
     # the gyroscopic (Coriolis) matrix vanishes on the straight beam: no term here
     A = stiffness - w * w * mass + 1j * w * model.eta * mass
     return np.linalg.solve(A, (-dl.alpha * w * q).astype(complex)), q
+
+
+def resonance_frequency_hz(beam: Beam, omega0: float, amplitude: float = 1.0, N: int = 80) -> float:
+    """f_0 [Hz]: the first in-plane frequency of the linearised model at the largest speed
+    |Omega_0| + a of the drive, exact rather than the Southwell line.
+
+    Parameters
+    ----------
+    beam : Beam
+        The beam.
+    omega0, amplitude : float
+        Mean angular velocity and velocity amplitude [rad/s].
+    N : int
+        Grid intervals (80: 1e-4 from the continuum).
+
+    Returns
+    -------
+    float
+    """
+    return float(natural_frequencies_hz(beam, abs(omega0) + amplitude, 1, N, softening=True)[0])

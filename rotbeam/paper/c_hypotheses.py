@@ -47,10 +47,9 @@ from scipy.interpolate import PchipInterpolator
 from ..config.checks import check_positive, check_threshold
 from ..config.errors import RotbeamInputError
 from ..model.criterion import critical_from_scan, rms
-from ..model.modes import natural_frequencies_hz
+from ..model.modes import natural_frequencies_hz, resonance_frequency_hz
 from ..model.params import Beam, Dimensionless, Drive, Effects, omega0_for_cmax
 from ..model.surrogate import southwell_frequency_hz
-from ..simulate.sweeps import resonance_frequency_hz
 from .c_response import dynamic_response, hypothesis_quasistatic_midspan, midspan_measure
 from .printed import printed_per_threshold, read_claims
 

@@ -366,3 +366,17 @@ def builtin_hypotheses(
         rows.append({"claim": "c0_small_zeta", "hypothesis": "sqrt(0.1) truncated, not rounded",
                      "value": math.floor(c0 * 100) / 100, "note": ""})  # fmt: skip
     return pd.DataFrame(rows, columns=HYPOTHESIS_COLUMNS)
+
+
+def claims_markdown(table: pd.DataFrame) -> str:
+    """The claims table as Markdown, with a count of each status on top."""
+    from ..report.io import markdown_table
+
+    counts = table["status"].value_counts()
+    head = ", ".join(f"{counts.get(s, 0)} {s}" for s in ("reproduced", "explained", "unexplained"))
+    return (
+        "# Paper against reproduction\n\n"
+        f"{len(table)} claims: {head}.  Printed values: rotbeam/paper/paper_claims.yaml; "
+        "ours: this workflow's outputs; explanation: the band, and every hypothesis tried.\n\n"
+        + markdown_table(table)
+    )

@@ -114,17 +114,3 @@ def _rect(x0, x1, y0, y1):
     from matplotlib.patches import Rectangle
 
     return Rectangle((x0, y0), x1 - x0, y1 - y0, fill=False, ec=ACCENT, lw=1, ls="--")
-
-
-def claims_markdown(table: pd.DataFrame) -> str:
-    """The claims table as Markdown, with a count of each status on top."""
-    from ..report.io import markdown_table
-
-    counts = table["status"].value_counts()
-    head = ", ".join(f"{counts.get(s, 0)} {s}" for s in ("reproduced", "explained", "unexplained"))
-    return (
-        "# Paper against reproduction\n\n"
-        f"{len(table)} claims: {head}.  Printed values: rotbeam/paper/paper_claims.yaml; "
-        "ours: this workflow's outputs; explanation: the band, and every hypothesis tried.\n\n"
-        + markdown_table(table)
-    )

@@ -3,7 +3,7 @@
 For each reference boundary line C_max (config `boundary.c_max`, Omega_0 = sqrt(C_max / G) - a)
 the clamp strain N/(EA) at s = 0, in closed form (`rotbeam.model.elastica.centrifugal_strain` at
 the rotation the model freezes the stretch at, `Dimensionless.lam_stretch`). On the lines the
-study names (config `reproduction.stretch.c_max`): f_d* by root finding (`critical_frequency`)
+study names (config `reproduction.stretch.c_max`): f_d* by root finding (`critical`)
 with stretching off and on, and RMS(y_m) and Delta RMS at the inextensible f_d* with it off and
 on. `inextensible_limit` interpolates the C_max above which stretching moves f_d* by more than a
 given fraction (1 % in the claims): where the paper's inextensible model stops holding.
@@ -18,7 +18,7 @@ from dataclasses import replace
 import numpy as np
 import pandas as pd
 
-from ..analysis.verdict import critical_frequency
+from ..analysis.verdict import critical
 from ..model.grid import centrifugal_strain
 from ..model.params import Beam, Dimensionless, Drive, Effects, omega0_for_cmax
 from ..simulate.scene import Scene, simulate
@@ -43,7 +43,8 @@ def stretch_line(beam: Beam, c_max: float, amplitude: float, threshold: float, e
     t0 = time.perf_counter()
     w0 = omega0_for_cmax(beam, c_max, amplitude)
     off, on = replace(effects, extension=False), replace(effects, extension=True)
-    crit = {k: critical_frequency(beam, w0, threshold, amplitude, e, numerics, rtol)
+    drive = Drive(omega0=w0, amplitude=amplitude, f_d=1.0)  # f_d: the search sets it
+    crit = {k: critical(Scene(beam, drive, e, numerics), threshold, rtol)
             for k, e in (("off", off), ("on", on))}  # fmt: skip
     row: dict[str, float] = {"f_d_star_off": crit["off"].f_d_star,
                              "f_d_star_on": crit["on"].f_d_star}  # fmt: skip

@@ -68,3 +68,21 @@ def plot_identification(curve: ResonanceCurve, fit: Identification, fitted: pd.D
     )
     a.legend(fontsize=8)
     save(fig, path)
+
+
+def plot_identification_run(curve: ResonanceCurve, fit: Identification, scene, omega0: float,
+                            amplitude: float, numerics, path: str | Path) -> None:  # fmt: skip
+    """`plot_identification` with the fitted beam's and the scene beam's curves simulated on 41
+    drive frequencies spanning the data (5 % beyond each end)."""
+    import numpy as np
+
+    from ..model.params import Beam
+    from ..simulate.sweeps import scan_line
+
+    lo, hi = float(curve.f_d[0]), float(curve.f_d[-1])
+    grid = np.linspace(lo - 0.05 * (hi - lo), hi + 0.05 * (hi - lo), 41)
+    fitted = scan_line(fit.beam, omega0, grid, amplitude, scene.effects, numerics)
+    ref = scan_line(scene.beam, omega0, grid, amplitude, scene.effects, numerics)
+    label = "Table 1 beam" if scene.beam == Beam() else "scene beam"
+    label += f" (E = {scene.beam.E:.4g} Pa, gamma = {scene.beam.gamma:.4g})"
+    plot_identification(curve, fit, fitted, ref, label, path)

@@ -66,3 +66,31 @@ def write_table(
     write_csv(df, csv_path)
     text = (f"{title}\n\n" if title else "") + markdown_table(df)
     write_text(text, md_path)
+
+
+def write_series(path: str | Path, series: dict[str, Any]) -> None:
+    """Columns of equal length to a CSV file, or Parquet when `path` ends in .parquet.
+
+    Parameters
+    ----------
+    path : str or Path
+        The file (.csv or .parquet).
+    series : dict
+        Column name -> values.
+    """
+    from ..config.errors import RotbeamInputError
+
+    df = pd.DataFrame(series)
+
+    def write(tmp: Path) -> None:
+        if Path(path).suffix == ".parquet":
+            try:
+                df.to_parquet(tmp)
+            except ImportError:
+                raise RotbeamInputError(
+                    "--out .parquet needs pyarrow or fastparquet (pip install pyarrow); use .csv"
+                ) from None
+        else:
+            df.to_csv(tmp, index=False)
+
+    atomic_write(path, write)

@@ -7,25 +7,15 @@ from __future__ import annotations
 from pathlib import Path
 
 from ..analysis.verdict import Verdict
-from ..config.errors import RotbeamInputError
+from ..config.checks import check_plot_suffix
 from ..simulate.scene import SceneResult
 from .style import DYN, QS, figure, save
 
+
 #: File types `plot_verdict` writes.
-PLOT_SUFFIXES = (".png", ".pdf", ".svg")
-
-
-def check_plot_path(path: str | Path) -> Path:
-    """The --plot path, if its suffix is one `plot_verdict` writes (checked before a run)."""
-    path = Path(path)
-    if path.suffix not in PLOT_SUFFIXES:
-        raise RotbeamInputError(f"--plot must end in {', '.join(PLOT_SUFFIXES)}, got {str(path)!r}")
-    return path
-
-
 def plot_verdict(result: SceneResult, verdict: Verdict, path: str | Path) -> None:
     """y_m over the steady window, dynamic against quasi-static, with the verdict and the cost."""
-    path = check_plot_path(path)
+    path = check_plot_suffix(path)
     series = result.time_series()
     t = series["t_s"] - series["t_s"][0]
     scene = result.scene

@@ -26,14 +26,17 @@ import math
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
-from scipy.integrate import solve_ivp
 
 from ..model.base import DiscreteModel
 from ..solve.lyapunov import largest_lyapunov
 from ..solve.steady import initial_state
 from ..solve.system import FirstOrderSystem
+
+if TYPE_CHECKING:
+    from .scene import SceneResult
 
 RESPONSES = ("periodic", "subharmonic", "quasiperiodic", "chaotic")
 #: stepper tolerance of the classification run.  At a = 3 rad/s, 7 Hz (N = 6, chaotic) the
@@ -104,6 +107,8 @@ def _transient(rhs, jac, z, P, periods, rtol, atol, deadline, progress, total):
     """Step `periods` periods from z, one solve a period so that the time budget (`deadline`,
     time.perf_counter) and `progress` are seen between periods: (final state, periods done,
     why it stopped early or '')."""
+    from scipy.integrate import solve_ivp  # here: only a time-stepped run needs it
+
     done = 0
     for k in range(periods):
         sol = solve_ivp(rhs, (k * P, (k + 1) * P), z, method="Radau", rtol=rtol, atol=atol,
@@ -220,3 +225,41 @@ def _classified(model: DiscreteModel, T: float, P: float, ly, tol: float) -> dic
         "distances": dist,
         "lyapunov_running": np.asarray(ly.running, dtype=float) / T,
     }
+
+
+def response_of_result(
+    result: SceneResult,
+    N: int = 6,
+    periods: int = 40,
+    progress: Callable[[int, int], None] | None = None,
+) -> tuple[dict, ResponseResult | None]:
+    """`response` and `lyapunov_max` of a simulated scene: from the multipliers of a stable
+    periodic steady state (ln |mu|max per drive period), else by classifying the time-stepped
+    response (`response_of` on grid N, `periods` of transient and as many classified).
+
+    Parameters
+    ----------
+    result : SceneResult
+        The scene's steady-state run.
+    N : int
+        Grid of the classification run.
+    periods : int
+        Its transient periods, and its classified ones.
+    progress : callable or None
+        progress(done, total) after every period of the classification.
+
+    Returns
+    -------
+    columns : dict
+        response, lyapunov_max [1/s] and, after a classification, its other fields.
+    classification : ResponseResult or None
+        The classification run, None for a stable periodic state.
+    """
+    fl = result.dynamic.floquet
+    if result.converged and fl is not None:
+        P = 1.0 / result.scene.drive.f_d
+        lyap = math.log(fl.max_abs) / P if fl.max_abs > 0 else -math.inf
+        return {"response": "periodic", "lyapunov_max": lyap}, None
+    scene = result.scene
+    r = response_of(scene.model(N), scene.beam.T, periods, periods, progress=progress)
+    return r.as_dict(), r

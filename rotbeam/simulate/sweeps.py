@@ -7,27 +7,24 @@ import math
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import replace
+from typing import TYPE_CHECKING
 
 import numpy as np
-import pandas as pd
 
 from ..config.errors import RotbeamInputError
-from ..model.modes import natural_frequencies_hz
+from ..model.modes import resonance_frequency_hz
 from ..model.params import Beam, Drive, Effects, drive_groups
 from ..solve.numerics import Numerics
 from .scene import Scene, simulate
+
+if TYPE_CHECKING:
+    import pandas
 
 COLUMNS = [
     "omega0", "f_d", "amplitude", "fd_over_fn", "C_max", "E_max", "E_n", "f_n_hz", "f0_hz",
     "rms_dynamic", "rms_quasistatic", "delta_rms", "converged", "status", "message",
     "periods", "N", "extrapolated", "seconds", "floquet_max", "stable", "response",
 ]  # fmt: skip
-
-
-def resonance_frequency_hz(beam: Beam, omega0: float, amplitude: float = 1.0, N: int = 80) -> float:
-    """f_0: first in-plane frequency of the linearised model at the maximal speed Omega_0 + a
-    (the premise of Eq. Southwell), exact rather than the Southwell line."""
-    return float(natural_frequencies_hz(beam, abs(omega0) + amplitude, 1, N, softening=True)[0])
 
 
 def boundary_scan_frequencies(
@@ -49,8 +46,10 @@ def scan_line(
     effects: Effects | None = None,
     numerics: Numerics | None = None,
     log: Callable[[str], None] | None = None,
-) -> pd.DataFrame:
+) -> pandas.DataFrame:
     """Dynamic and quasi-static RMS at each drive frequency of one line (continuation in f_d)."""
+    import pandas as pd
+
     effects = effects or Effects()
     numerics = numerics or Numerics()
     f0 = resonance_frequency_hz(beam, omega0, amplitude)

@@ -24,7 +24,6 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy.integrate import solve_ivp
 
 
 @dataclass
@@ -63,6 +62,8 @@ def largest_lyapunov(
     are kept (for spectra).  `deadline` (time.perf_counter) stops early; the result says so.
     `progress(k)` is called after the k-th interval.
     """
+    from scipy.integrate import solve_ivp  # here: only a time-stepped run needs it
+
     start = time.perf_counter()
     z = np.asarray(z0, dtype=float).copy()
     d = z.size

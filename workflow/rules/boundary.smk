@@ -48,7 +48,6 @@ rule c_per_threshold:
     input:
         ref="results/boundary/ref.csv",
         beams=expand("results/boundary/{beam}.csv", beam=sorted(FIG7_BEAMS)),
-        claims=PAPER_CLAIMS,
     output:
         csv="results/tables/c_per_threshold.csv",
         md=report(
@@ -65,6 +64,7 @@ rule c_per_threshold:
     conda:
         "../envs/rotbeam.yaml"
     params:
+        claims=CLAIMS_VERSION,
         code=code_version("c_per_threshold"),
     script:
         "../scripts/c_per_threshold.py"

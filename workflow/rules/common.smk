@@ -1,4 +1,5 @@
 import functools
+import hashlib
 import importlib.metadata
 import platform
 import sys
@@ -146,7 +147,12 @@ def all_targets():
 
 
 # --- paper against reproduction (rules/reproduction.smk) ---
-PAPER_CLAIMS = "rotbeam/paper/paper_claims.yaml"
+# The paper's printed values ship with the package (rotbeam/paper/paper_claims.yaml) and the
+# jobs read them there; a rule that reads them reruns when they change by its params entry
+# claims=CLAIMS_VERSION, a hash of the file (its path depends on where the package is).
+CLAIMS_VERSION = hashlib.sha256(
+    (PACKAGE_DIR / "paper" / "paper_claims.yaml").read_bytes()
+).hexdigest()[:16]
 REPRO = config["reproduction"]
 R7 = repro_fig7_variants(config)
 

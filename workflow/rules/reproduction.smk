@@ -29,7 +29,6 @@ rule repro_fig7:
             "results/reproduction/fig7/{variant}_lines.csv", variant=sorted(R7)
         ),
         ref_fit="results/fig6/fit.json",
-        claims=PAPER_CLAIMS,
     output:
         csv="results/reproduction/fig7_hypotheses.csv",
         md=report(
@@ -51,6 +50,7 @@ rule repro_fig7:
     conda:
         "../envs/rotbeam.yaml"
     params:
+        claims=CLAIMS_VERSION,
         code=code_version("repro_fig7"),
         variants=sorted(R7),
         beams=R7,
@@ -63,7 +63,6 @@ rule repro_estar:
     input:
         boundary="results/boundary/ref.csv",
         line50=fig5_line,
-        claims=PAPER_CLAIMS,
     output:
         csv="results/reproduction/estar_readings.csv",
         md=report(
@@ -79,6 +78,7 @@ rule repro_estar:
     conda:
         "../envs/rotbeam.yaml"
     params:
+        claims=CLAIMS_VERSION,
         code=code_version("repro_estar"),
         beam=config["beam"],
         amplitude=config["amplitude"],
@@ -89,8 +89,6 @@ rule repro_estar:
 
 
 rule repro_fn_zeta:
-    input:
-        claims=PAPER_CLAIMS,
     output:
         csv="results/reproduction/fn_zeta.csv",
         md=report(
@@ -106,6 +104,7 @@ rule repro_fn_zeta:
     conda:
         "../envs/rotbeam.yaml"
     params:
+        claims=CLAIMS_VERSION,
         code=code_version("repro_fn_zeta"),
         beam=config["beam"],
         N=config["numerics"]["N"],
@@ -117,7 +116,6 @@ rule repro_figD9:
     input:
         grid=lambda w: fig7_grid_files(0.05),
         cfit="results/tables/c_per_threshold.csv",
-        claims=PAPER_CLAIMS,
     output:
         pdf=report(
             "results/reproduction/figD9_window.pdf",
@@ -134,6 +132,7 @@ rule repro_figD9:
     conda:
         "../envs/rotbeam.yaml"
     params:
+        claims=CLAIMS_VERSION,
         code=code_version("repro_figD9"),
         delta_points=REPRO["figD9"]["delta_points"],
     script:
@@ -169,7 +168,6 @@ rule repro_stretch:
 
 rule reproduction:
     input:
-        claims=PAPER_CLAIMS,
         table1="results/tables/table1.csv",
         c_per_threshold="results/tables/c_per_threshold.csv",
         c0_table="results/tables/c0_threshold.csv",
@@ -205,6 +203,7 @@ rule reproduction:
     conda:
         "../envs/rotbeam.yaml"
     params:
+        claims=CLAIMS_VERSION,
         code=code_version("reproduction"),
         threshold=config["main_threshold"],
         amplitude=config["amplitude"],

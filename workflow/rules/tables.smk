@@ -2,8 +2,6 @@
 
 
 rule table1:
-    input:
-        claims=PAPER_CLAIMS,
     output:
         csv="results/tables/table1.csv",
         md=report(
@@ -18,6 +16,7 @@ rule table1:
     conda:
         "../envs/rotbeam.yaml"
     params:
+        claims=CLAIMS_VERSION,
         code=code_version("table1"),
         beam=config["beam"],
     script:
@@ -46,8 +45,6 @@ rule systems_table:
 
 
 rule c0_table:
-    input:
-        claims=PAPER_CLAIMS,
     output:
         csv="results/tables/c0_threshold.csv",
         md=report(
@@ -62,6 +59,7 @@ rule c0_table:
     conda:
         "../envs/rotbeam.yaml"
     params:
+        claims=CLAIMS_VERSION,
         code=code_version("c0_table"),
         thresholds=config["c0_thresholds"],
         beam=config["beam"],

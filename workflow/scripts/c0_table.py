@@ -12,7 +12,7 @@ from rotbeam.report.joblog import job_log
 
 with job_log(snakemake.log[0], snakemake.input, snakemake.output, snakemake.rule):
     zeta = Beam(**snakemake.params.beam).zeta
-    _, claims = read_claims(snakemake.input.claims)
+    _, claims = read_claims()
     printed = printed_per_threshold(claims, "c0_")
     rows = [
         {"threshold": t, "c0_zeta0": c0_limit(t), "c0_paper": printed.get(round(t, 4)),

@@ -10,7 +10,7 @@ from rotbeam.report.io import write_table
 from rotbeam.report.joblog import job_log
 
 with job_log(snakemake.log[0], snakemake.input, snakemake.output, snakemake.rule) as log:
-    _, claims = read_claims(snakemake.input.claims)
+    _, claims = read_claims()
     paper = printed_per_threshold(claims, "c_")
     ref = pd.read_csv(snakemake.input.ref)
     beams = pd.concat([pd.read_csv(f) for f in snakemake.input.beams], ignore_index=True)

@@ -11,7 +11,7 @@ from rotbeam.report.io import write_csv, write_table
 from rotbeam.report.joblog import job_log
 
 with job_log(snakemake.log[0], snakemake.input, snakemake.output, snakemake.rule) as log:
-    _, claims = read_claims(snakemake.input.claims)
+    _, claims = read_claims()
     paper = claims.set_index("id")["paper"]
     f5 = snakemake.params.fig5
     line50 = pd.read_csv(snakemake.input.line50[0]) if snakemake.input.line50 else None

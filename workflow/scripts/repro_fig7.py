@@ -13,7 +13,7 @@ from rotbeam.report.io import write_csv, write_table
 from rotbeam.report.joblog import job_log
 
 with job_log(snakemake.log[0], snakemake.input, snakemake.output, snakemake.rule) as log:
-    _, claims = read_claims(snakemake.input.claims)
+    _, claims = read_claims()
     within = float(claims.set_index("id").loc["fig7_collapse", "at"]["within"])
     c_ref = json.load(open(snakemake.input.ref_fit))["c"]
     files = zip(snakemake.params.variants, snakemake.input.lines, strict=True)

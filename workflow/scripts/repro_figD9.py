@@ -12,7 +12,7 @@ from rotbeam.report.io import write_csv
 from rotbeam.report.joblog import job_log
 
 with job_log(snakemake.log[0], snakemake.input, snakemake.output, snakemake.rule) as log:
-    _, claims = read_claims(snakemake.input.claims)
+    _, claims = read_claims()
     window = claims.set_index("id").loc["figD9_range", "at"]
     cfit = pd.read_csv(snakemake.input.cfit)
     printed_c = claims.loc[claims["id"].str.match(r"c_\d"), "paper"].tolist()

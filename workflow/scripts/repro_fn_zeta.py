@@ -11,7 +11,7 @@ from rotbeam.report.io import write_csv, write_table
 from rotbeam.report.joblog import job_log
 
 with job_log(snakemake.log[0], snakemake.input, snakemake.output, snakemake.rule) as log:
-    inputs, claims = read_claims(snakemake.input.claims)
+    inputs, claims = read_claims()
     paper = claims.set_index("id")["paper"]
     table, long = fn_zeta_study(Beam(**snakemake.params.beam), inputs, float(paper["f_n_hz"]),
                                 float(paper["zeta"]), int(snakemake.params.N))  # fmt: skip

@@ -11,17 +11,17 @@ from rotbeam.paper.claims import (
     Outputs,
     builtin_hypotheses,
     c_hypotheses_long,
+    claims_markdown,
     judge,
     ours_values,
 )
 from rotbeam.paper.printed import read_claims
-from rotbeam.paper.reproduction_figures import claims_markdown
 from rotbeam.report.io import write_csv, write_text
 from rotbeam.report.joblog import job_log
 
 with job_log(snakemake.log[0], snakemake.input, snakemake.output, snakemake.rule) as log:
     inp = snakemake.input
-    _, claims = read_claims(inp.claims)
+    _, claims = read_claims()
     out = Outputs(
         table1=pd.read_csv(inp.table1),
         c_per_threshold=pd.read_csv(inp.c_per_threshold),

@@ -11,7 +11,7 @@ from rotbeam.report.joblog import job_log
 
 with job_log(snakemake.log[0], snakemake.input, snakemake.output, snakemake.rule):
     b = Beam(**snakemake.params.beam)
-    inputs, claims = read_claims(snakemake.input.claims)
+    inputs, claims = read_claims()
     printed = claims.set_index("id")["paper"]
 
     def paper(name: str, scale: float = 1.0) -> str:

@@ -1,0 +1,8 @@
+"""`python -m rotbeam`: the `rotbeam` command."""
+
+import sys
+
+from .cli import main
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,54 @@
+"""`rotbeam bench`: the work-precision benchmark (error against wall time)."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+from typing import Any
+
+from ..config.errors import RotbeamInputError
+from . import options
+
+HELP = "work-precision benchmark (error against wall time)"
+
+
+def add_arguments(p: argparse.ArgumentParser) -> None:
+    """The flags of `rotbeam bench`."""
+    p.add_argument("--quick", action="store_true", help="the small plan (2 scenes, 2 tolerances)")
+    p.add_argument("--config", help="YAML mapping of BenchPlan fields (see rotbeam/bench/plan.py)")
+    p.add_argument("--out", default="results/performance/work_precision",
+                   help="output stem: writes STEM.csv, .md, .pdf, .png")  # fmt: skip
+    p.add_argument("--max-seconds", type=options.finite, help="budget per run [s], > 0")
+
+
+def run(args: argparse.Namespace) -> int:
+    """Parse the plan, run it, write the outputs."""
+    from ..bench.plan import plan_from_dict
+    from ..bench.report import write_outputs
+    from ..bench.run import run_benchmark
+    from ..config.scenefile import load_yaml
+
+    spec: dict[str, Any] = {}
+    if args.config:
+        try:
+            spec = load_yaml(Path(args.config).read_text()) or {}
+        except OSError as exc:
+            raise RotbeamInputError(f"--config {args.config!r}: {exc.strerror}") from None
+        if not isinstance(spec, dict):
+            raise RotbeamInputError(f"--config {args.config!r} must hold a mapping")
+    if args.quick:
+        spec["quick"] = True
+    if args.max_seconds is not None:
+        if args.max_seconds <= 0:
+            raise RotbeamInputError(f"--max-seconds must be > 0, got {args.max_seconds}")
+        spec["max_seconds"] = args.max_seconds
+    plan = plan_from_dict(spec)
+
+    def say(msg: str) -> None:
+        print(msg, file=sys.stderr, flush=True)
+
+    runs, refs = run_benchmark(plan, progress=say)
+    write_outputs(runs, refs, plan, args.out)
+    say(f"wrote {args.out}.csv, .md, .pdf, .png")
+    return 0

@@ -1,0 +1,67 @@
+"""`rotbeam <command>`: the parser of every command and the dispatch; bad input gives one line
+on stderr and exit status 2, never a traceback."""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import sys
+
+from ..config.errors import RotbeamInputError
+from . import options
+
+#: command -> module of rotbeam.cli that parses and runs it
+COMMANDS = {
+    "simulate": "simulate",
+    "critical": "critical",
+    "effects": "effects",
+    "modes": "modes",
+    "bench": "bench",
+    "damping": "damping",
+    "identify": "identify",
+}
+
+#: exit status of a fit that ran but cannot be trusted (the message says why)
+EXIT_REJECTED = 1
+
+
+def version() -> str:
+    """The installed package's version."""
+    from importlib.metadata import PackageNotFoundError
+    from importlib.metadata import version as installed
+
+    try:
+        return installed("rotbeam")
+    except PackageNotFoundError:  # pragma: no cover - a source tree that was never installed
+        return "0+unknown"
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """The `rotbeam` parser with every command's flags."""
+    p = options.Parser(prog="rotbeam", description="Dynamic versus quasi-static response of a "
+                       "cantilevered beam on a rotating disk.")  # fmt: skip
+    p.add_argument("--version", action="version", version=f"rotbeam {version()}")
+    sub = p.add_subparsers(dest="command", required=True, parser_class=options.Parser)
+    for name, module in COMMANDS.items():
+        mod = importlib.import_module(f".{module}", __package__)
+        mod.add_arguments(sub.add_parser(name, help=mod.HELP, description=mod.HELP))
+    return p
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Run one command; its exit status (0 done, 1 no answer or a rejected fit, 2 bad input)."""
+    args = build_parser().parse_args(argv)
+    run = importlib.import_module(f".{COMMANDS[args.command]}", __package__).run
+    from .damping import FitRejected
+
+    try:
+        return run(args)
+    except RotbeamInputError as exc:
+        print(f"rotbeam: error: {options.named_flag(str(exc), args)}", file=sys.stderr)
+        return options.EXIT_USAGE
+    except FitRejected as exc:
+        print(f"rotbeam: fit rejected: {exc}", file=sys.stderr)
+        return EXIT_REJECTED
+    except KeyboardInterrupt:
+        print("rotbeam: interrupted", file=sys.stderr)
+        return 130

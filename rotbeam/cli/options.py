@@ -1,0 +1,209 @@
+"""The command line's flags, generated from the parameter registry, and what turns them into a
+scene: one line for a bad value, naming the flag, the value and what is allowed."""
+
+from __future__ import annotations
+
+import argparse
+import math
+import re
+from typing import Any
+
+from ..config.errors import RotbeamInputError
+from ..config.parameters import SECTIONS, check_value, help_text, param
+
+EXIT_USAGE = 2
+
+#: flag names that are not `--` + the field's name with hyphens
+FLAG_NAMES = {
+    ("drive", "f_d"): "--fd",
+    ("response", "periods"): "--response-periods",
+    ("response", "N"): "--response-N",
+    ("modes", "count"): "--k",
+}
+
+
+class Parser(argparse.ArgumentParser):
+    """argparse with one-line errors (exit status 2) and negative numbers read as values."""
+
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        super().__init__(*args, **kwargs)
+        # values like -2.5e1, -1e-5, -inf are values, not flags (argparse only knows -2, -2.5)
+        self._negative_number_matcher = re.compile(
+            r"^-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$|^-(inf|infinity|nan)$", re.IGNORECASE
+        )
+
+    def error(self, message: str) -> None:
+        if message.startswith("unrecognized arguments"):
+            message += f"; allowed: see `{self.prog} --help`"
+        self.exit(EXIT_USAGE, f"rotbeam: error: {message}\n")
+
+
+def finite(text: str) -> float:
+    """A finite real number from a flag's text."""
+    try:
+        v = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a number") from None
+    if not math.isfinite(v):
+        raise argparse.ArgumentTypeError(f"{text!r} is not a finite number")
+    return v
+
+
+def integer(text: str) -> int:
+    """An integer from a flag's text."""
+    try:
+        return int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not an integer") from None
+
+
+def flag_name(section: str, name: str) -> str:
+    """The flag of a registry field: `--` and its name with hyphens, or FLAG_NAMES'."""
+    return FLAG_NAMES.get((section, name), "--" + name.replace("_", "-"))
+
+
+def dest(section: str, name: str) -> str:
+    """Where argparse keeps a registry field's value."""
+    return f"{section}__{name}"
+
+
+def add_field(p: argparse.ArgumentParser, section: str, name: str, **kwargs: Any) -> None:
+    """One flag for the registry field section.name: its type, help (unit, default, range);
+    default None (unset: the scene file's value or the registry's default)."""
+    entry = param(section, name)
+    flag = flag_name(section, name)
+    common = {"dest": dest(section, name), "default": None, "help": help_text(section, name)}
+    if entry.kind == "bool":
+        p.add_argument(flag, action=argparse.BooleanOptionalAction, **common, **kwargs)
+    elif entry.kind == "choice":
+        p.add_argument(flag, metavar="{" + ",".join(entry.choices) + "}", **common, **kwargs)
+    else:
+        kind = integer if entry.kind == "int" else finite
+        p.add_argument(flag, type=kind, **common, **kwargs)
+    p.set_defaults(_fields=[*(p.get_default("_fields") or []), (section, name)])
+
+
+def add_section(p: argparse.ArgumentParser, section: str, skip: tuple[str, ...] = ()) -> None:
+    """A flag for every field of a scene section but `skip`."""
+    group = p.add_argument_group(f"{section} (scene section; a --scene file's values unless set)")
+    for name in SECTIONS[section]:
+        if name not in skip:
+            add_field(group, section, name)  # type: ignore[arg-type]
+
+
+def add_scene_flags(p: argparse.ArgumentParser, drive_frequency: bool = True) -> None:
+    """--scene, every beam, drive and numerics field, --effects and --json."""
+    p.add_argument("--scene", help="YAML scene file (sections beam, drive, effects, numerics)")
+    for section in ("beam", "drive", "numerics"):
+        add_section(p, section, skip=() if drive_frequency or section != "drive" else ("f_d",))
+    p.add_argument("--effects", help="comma list of effects switched on, e.g. centrifugal,euler"
+                   "; or auto[:TOL]: those whose share of RMS is >= TOL (default 0.001), from "
+                   "`rotbeam effects`" + ("" if drive_frequency else
+                   " at the linear estimate of f_d*"))  # fmt: skip
+    p.add_argument("--json", action="store_true", help="print one JSON object")
+
+
+def given(args: argparse.Namespace) -> dict[str, str]:
+    """`section.name` -> flag of every registry field set on the command line."""
+    return {f"{s}.{n}": flag_name(s, n) for s, n in getattr(args, "_fields", [])
+            if getattr(args, dest(s, n)) is not None}  # fmt: skip
+
+
+def option(args: argparse.Namespace, section: str, name: str) -> Any:
+    """A command option's value, checked against the registry (its default when unset)."""
+    value = getattr(args, dest(section, name))
+    return check_value(section, name, param(section, name).default if value is None else value)
+
+
+def scene_values(args: argparse.Namespace) -> dict[str, dict[str, Any]]:
+    """The scene fields set by flags, by section."""
+    out: dict[str, dict[str, Any]] = {}
+    for s, n in getattr(args, "_fields", []):
+        value = getattr(args, dest(s, n))
+        if value is not None and s in SECTIONS:
+            out.setdefault(s, {})[n] = value
+    return out
+
+
+def named_flag(message: str, args: argparse.Namespace) -> str:
+    """`message` prefixed with `argument --flag:` when it is about a field a flag set."""
+    for key, flag in given(args).items():
+        if message.startswith(key) and not message[len(key) : len(key) + 1].isalnum():
+            return f"argument {flag}: {message}"
+    if message.startswith("effects") and getattr(args, "effects", None) is not None:
+        return f"argument --effects: {message}"
+    return message
+
+
+def scene_request(args: argparse.Namespace, needs: tuple[str, ...] = ("omega0", "f_d")) -> tuple:
+    """The scene of the command line: its --scene file, overridden by the flags.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        Parsed flags (`add_scene_flags`, optionally `add_uncertainty_flags`).
+    needs : tuple of str
+        Drive fields the command cannot do without (from the file or a flag).
+
+    Returns
+    -------
+    scene : Scene
+        The scene (at the means of its uncertain inputs).
+    auto_tol : float or None
+        TOL of `effects: auto` (flag or file; an explicit --effects list wins), None without.
+    inputs : dict
+        Uncertain inputs, name -> (mean, sd).
+    """
+    from ..config.scenefile import auto_tol, load_scene_file, scene_sections, split_auto
+    from ..model.params import Effects
+    from ..simulate.scene import build_scene
+
+    raw = dict(load_scene_file(args.scene)) if args.scene else {}
+    section = raw.pop("uncertainty", None)
+    raw, file_tol = split_auto(raw)
+    spec = scene_sections(raw)
+    for s, values in scene_values(args).items():
+        spec.setdefault(s, {}).update(values)
+    tol = None
+    text = args.effects or ""
+    if text == "auto" or text.startswith("auto:"):
+        tol = auto_tol(text, "argument --effects")
+    elif args.effects is not None:
+        spec["effects"] = vars(Effects.from_list(args.effects)).copy()
+    else:
+        tol = file_tol
+    for key in needs:
+        if key not in spec.get("drive", {}):
+            what = {"omega0": "a finite number, rad/s", "f_d": "a number > 0, Hz"}[key]
+            raise RotbeamInputError(
+                f"drive.{key} is missing: give {flag_name('drive', key)} ({what}) or drive.{key} "
+                f"in the --scene file"
+            )
+    scene = build_scene(spec)
+    inputs = {}
+    if hasattr(args, "uncertainty"):
+        from ..analysis.uncertainty import at_means, read_inputs
+
+        inputs = read_inputs(section, args.uncertainty, f"scene file {args.scene!r}")
+        scene = at_means(scene, inputs)
+    return scene, tol, inputs
+
+
+def add_uncertainty_flags(p: argparse.ArgumentParser) -> None:
+    """--uncertainty, --uq-method, --uq-samples."""
+    p.add_argument("--uncertainty", help="inputs' normal spreads, e.g. "
+                   "\"gamma=0.039+-0.008,E=1.22e6+-0.05e6\" (beam fields, omega0, amplitude; "
+                   "adds to a scene file's uncertainty section)")  # fmt: skip
+    p.add_argument("--uq-method", default="linear", choices=("linear", "sobol"),
+                   help="linear (1 + k runs, default) or sobol (--uq-samples runs at a Sobol "
+                   "design)")  # fmt: skip
+    p.add_argument("--uq-samples", type=integer, default=32,
+                   help="Sobol runs, a power of two (default 32)")  # fmt: skip
+
+
+def check_plot_path(path: str | None) -> None:
+    """A --plot path with a suffix matplotlib writes (.png, .pdf, .svg), before any work."""
+    if path:
+        from ..config.checks import check_plot_suffix
+
+        check_plot_suffix(path)

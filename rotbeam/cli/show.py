@@ -1,0 +1,50 @@
+"""What the commands print: aligned name-value lines, the chosen effects, the uncertainty."""
+
+from __future__ import annotations
+
+import json
+from typing import Any
+
+WIDTH = 16
+
+
+def line(name: str, text: str) -> None:
+    """One `name value` line, names aligned."""
+    print(f"{name:{WIDTH}s} {text}")
+
+
+def values(out: dict[str, Any], keys: tuple[str, ...], fmt: str = ".6g") -> None:
+    """`line` for each key of `out`, numbers formatted with `fmt`."""
+    for key in keys:
+        line(key, format(out[key], fmt))
+
+
+def as_json(out: dict[str, Any]) -> None:
+    """One JSON object on stdout (NumPy numbers as floats)."""
+    print(json.dumps(out, default=float))
+
+
+def auto_effects(auto: dict[str, Any]) -> None:
+    """What `effects: auto` kept and dropped, and what the budget cost."""
+    dropped = ",".join(auto["dropped"]) or "none"
+    line("effects auto", f"kept {','.join(auto['kept'])}; dropped {dropped} (worth "
+         f"{auto['dropped_share']:.2g} of RMS at f_d = {auto['budget_f_d']:.4g} Hz; the budget "
+         f"took {auto['budget_seconds']:.3g} s)")  # fmt: skip
+
+
+def uncertainty(prop: Any) -> None:
+    """Mean, sd and 95 % interval of each output, and P(quasi-static)."""
+    spread = ", ".join(f"{k} = {m:g} +- {s:g}" for k, (m, s) in prop.inputs.items())
+    failed = f", {prop.failed} failed" if prop.failed else ""
+    line("uncertainty", f"{spread} (normal; {prop.method}, {prop.runs} runs, "
+         f"{prop.seconds:.3g} s{failed})")  # fmt: skip
+    for k in prop.mean:
+        line("  " + k, f"{prop.mean[k]:.6g} +- {prop.sd[k]:.3g}  95 %: "
+             f"[{prop.low[k]:.6g}, {prop.high[k]:.6g}]")  # fmt: skip
+    if prop.p_quasistatic is not None:
+        line("  verdict", f"quasi-static with probability {prop.p_quasistatic:.3g}")
+
+
+def auto_dict(auto: Any, budget: Any, f_d: float) -> dict[str, Any]:
+    """`effects_auto` of the JSON output: the choice, the budget's cost and where it ran."""
+    return auto.as_dict() | {"budget_seconds": budget.total_seconds, "budget_f_d": f_d}

@@ -1,0 +1,107 @@
+"""`rotbeam simulate`: one scene, dynamic beside quasi-static, with the verdict and its cost."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+
+from ..config.errors import RotbeamInputError
+from . import options, show
+
+HELP = "dynamic and quasi-static response of one scene, and the verdict"
+
+
+def add_arguments(p: argparse.ArgumentParser) -> None:
+    """The flags of `rotbeam simulate`."""
+    options.add_scene_flags(p, drive_frequency=True)
+    options.add_field(p, "verdict", "threshold")
+    options.add_field(p, "response", "periods")
+    options.add_field(p, "response", "N")
+    p.add_argument("--out", help="write the time series to this CSV or Parquet file")
+    p.add_argument("--plot", help="draw y_m, dynamic against quasi-static, with the verdict and "
+                   "the cost, to this .png, .pdf or .svg file (without a stable periodic state: "
+                   "the Poincare section and the spectrum)")  # fmt: skip
+    p.add_argument("--progress", action="store_true", help="report progress on stderr")
+    options.add_uncertainty_flags(p)
+
+
+def run(args: argparse.Namespace) -> int:
+    """Parse, simulate, judge, print."""
+    threshold = options.option(args, "verdict", "threshold")
+    periods, response_N = options.option(args, "response", "periods"), options.option(
+        args, "response", "N")  # fmt: skip
+    if args.out and Path(args.out).suffix not in (".csv", ".parquet"):
+        raise RotbeamInputError(f"--out must end in .csv or .parquet, got {args.out!r}")
+    options.check_plot_path(args.plot)
+    scene, tol, inputs = options.scene_request(args)
+
+    from ..analysis.verdict import judge
+    from ..simulate.response import response_of_result
+    from ..simulate.scene import simulate
+
+    summary = {}
+    if tol is not None:
+        from ..analysis.effect_budget import auto_scene
+
+        scene, auto, budget = auto_scene(scene, tol)
+        summary["effects_auto"] = show.auto_dict(auto, budget, scene.drive.f_d)
+    res = simulate(scene, progress=_period_progress if args.progress else None)
+    verdict = judge(res, threshold)
+    columns, classified = response_of_result(
+        res, response_N, periods, _response_progress(response_N) if args.progress else None
+    )
+    summary = res.summary() | verdict.as_dict() | columns | summary
+    prop = None
+    if inputs:
+        from ..analysis.uncertainty import simulate_spread
+
+        prop = simulate_spread(scene, res, inputs, args.uq_method, args.uq_samples, threshold)
+        summary["uncertainty"] = prop.as_dict()
+    if args.out:
+        from ..report.io import write_series
+
+        write_series(args.out, res.time_series())
+    if args.plot:
+        _plot(args.plot, res, verdict, classified)
+    if args.json:
+        show.as_json(summary)
+    else:
+        _print(summary, verdict, prop)
+    return 0 if res.converged else 1
+
+
+def _period_progress(k: int, bound: float) -> None:
+    print(f"\rperiod {k}: transient bound {bound:.2e}", end="", file=sys.stderr, flush=True)
+
+
+def _response_progress(N: int):
+    def progress(done: int, total: int) -> None:
+        print(f"\rresponse (N = {N}): period {done} of {total}", end="", file=sys.stderr,
+              flush=True)  # fmt: skip
+
+    return progress
+
+
+def _print(summary: dict, verdict, prop) -> None:
+    show.values(summary, ("rms_dynamic", "rms_quasistatic", "delta_rms", "f_n_hz", "f0_hz",
+                          "C_max", "E_max"))  # fmt: skip
+    show.line("converged", f"{summary['converged']} ({summary['message']})")
+    show.line("verdict", verdict.text)
+    if "effects_auto" in summary:
+        show.auto_effects(summary["effects_auto"])
+    show.line("seconds", f"{summary['seconds']:.3g}")
+    if prop is not None:
+        show.uncertainty(prop)
+
+
+def _plot(path: str, res, verdict, classified) -> None:
+    """The verdict's figure, or without a stable periodic state the classification's."""
+    if classified is not None:
+        from ..report.response_figures import plot_response
+
+        plot_response(classified, res.scene, path)
+    else:
+        from ..report.verdict_plot import plot_verdict
+
+        plot_verdict(res, verdict, path)

@@ -1,0 +1,78 @@
+"""What a command or a workflow job loads: only what it uses.  `rotbeam simulate` without
+--plot or --uncertainty loads neither matplotlib (0.35 s) nor scipy.stats (0.5 s), and a
+workflow script that draws nothing does not load matplotlib; each check runs in a fresh Python
+and has a positive control that loads the module, so that it can fail."""
+
+from __future__ import annotations
+
+import ast
+import json
+import re
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+HEAVY = ("matplotlib", "scipy.stats")
+
+
+def loaded_after(code: str) -> list[str]:
+    """Which of HEAVY a fresh Python has in sys.modules after running `code`."""
+    probe = (
+        f"{code}\nimport json, sys\nprint(json.dumps([m for m in {HEAVY!r} if m in sys.modules]))"
+    )
+    p = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True, cwd=ROOT,
+                       timeout=300)  # fmt: skip
+    assert p.returncode == 0, p.stderr[-2000:]
+    return json.loads(p.stdout.strip().splitlines()[-1])
+
+
+def simulate(*flags: str) -> str:
+    argv = ["simulate", "--omega0", "5", "--fd", "2", "--N", "6", "--json", *flags]
+    return f"from rotbeam.cli import main\nmain({argv!r})"
+
+
+def test_simulate_loads_neither_matplotlib_nor_scipy_stats(tmp_path):
+    assert loaded_after(simulate()) == []
+    # the controls: --plot draws (matplotlib), a Sobol design needs scipy.stats
+    assert "matplotlib" in loaded_after(simulate("--plot", str(tmp_path / "a.png")))
+    spread = ("--uncertainty", "gamma=0.039+-0.008", "--uq-method", "sobol", "--uq-samples", "2")
+    assert "scipy.stats" in loaded_after(simulate(*spread))
+
+
+def script_rules() -> dict[str, bool]:
+    """workflow script stem -> whether its rule writes a figure (.png or .pdf)."""
+    out = {}
+    for smk in (ROOT / "workflow" / "rules").glob("*.smk"):
+        for block in re.split(r"^rule ", smk.read_text(), flags=re.M)[1:]:
+            m = re.search(r"script:\s*\n\s*\"\.\./scripts/(\w+)\.py\"", block)
+            if m:
+                out[m.group(1)] = out.get(m.group(1), False) or bool(
+                    re.search(r"\.(png|pdf)\"", block)
+                )
+    return out
+
+
+def imports_of(script: Path) -> str:
+    """The script's import statements, at any depth (what it loads before it works)."""
+    tree = ast.parse(script.read_text())
+    nodes = [n for n in ast.walk(tree) if isinstance(n, (ast.Import, ast.ImportFrom))]
+    return "\n".join(ast.unparse(n) for n in nodes)
+
+
+RULES = script_rules()
+
+
+@pytest.mark.parametrize("stem", sorted(s for s, draws in RULES.items() if not draws))
+def test_workflow_script_that_draws_nothing_loads_no_matplotlib(stem):
+    assert "matplotlib" not in loaded_after(
+        imports_of(ROOT / "workflow" / "scripts" / f"{stem}.py")
+    )
+
+
+def test_the_script_check_sees_a_drawing_script():
+    drawing = sorted(s for s, draws in RULES.items() if draws)
+    assert "fig3" in drawing and len(drawing) >= 10
+    assert "matplotlib" in loaded_after(imports_of(ROOT / "workflow" / "scripts" / "fig3.py"))
