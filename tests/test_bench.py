@@ -13,7 +13,7 @@ from rotbeam.bench.report import choose_default, speedups, write_outputs
 from rotbeam.bench.run import reference, run_benchmark
 from rotbeam.model.elastica import DiscreteElastica
 from rotbeam.model.params import Beam, Drive, Effects
-from rotbeam.simulate.scene import Scene, build_scene, simulate
+from rotbeam.runs.scene import Scene, build_scene, simulate
 from rotbeam.solve.numerics import Numerics
 from rotbeam.solve.periodic import solve_periodic
 

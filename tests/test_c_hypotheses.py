@@ -53,7 +53,7 @@ def test_no_change_reproduces_our_c(ours):
 
 
 def test_a_scene_of_ours_matches_simulate():
-    from rotbeam.simulate.scene import Scene, simulate
+    from rotbeam.runs.scene import Scene, simulate
 
     d = scene_delta("ours", BEAM, OMEGA0, 0.3 * F0, SCAN)
     ref = simulate(Scene(BEAM, Drive(OMEGA0, 1.0, 0.3 * F0), numerics=Numerics(N=20)))

@@ -271,7 +271,7 @@ def test_fd_star_interval_against_brute_force():
     the linearised and the Sobol-32 sd against 64 plain runs at pseudo-random normal inputs."""
     from rotbeam.analysis.verdict import critical
     from rotbeam.model.params import Drive
-    from rotbeam.simulate.scene import Scene
+    from rotbeam.runs.scene import Scene
     from rotbeam.solve.numerics import Numerics
 
     spread = "gamma=0.039+-0.008,E=1.22e6+-0.05e6"

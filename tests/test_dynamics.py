@@ -8,9 +8,9 @@ from scipy.integrate import solve_ivp
 from rotbeam.model.criterion import rms
 from rotbeam.model.elastica import DiscreteElastica
 from rotbeam.model.grid import Grid
-from rotbeam.model.modes import natural_frequencies_hz
+from rotbeam.model.modes import modes
 from rotbeam.model.params import Beam, Dimensionless, Drive
-from rotbeam.simulate.scene import Scene, simulate
+from rotbeam.runs.scene import Scene, simulate
 from rotbeam.solve.numerics import Numerics
 from rotbeam.solve.periodic import solve_periodic, solve_periodic_adaptive
 
@@ -80,7 +80,7 @@ def test_zero_amplitude_gives_zero_deflection():
 
 def test_reference_beam_resonance_near_7_hz():
     """Fig. 3a: the resonance curve at Omega_0 = 5 rad/s peaks near f_d = 7 Hz (coarse)."""
-    f0 = natural_frequencies_hz(BEAM, 5.0, 1, N=80)[0]
+    f0 = modes(BEAM, 5.0, 1, N=80)[0]
     assert 6.5 < f0 < 7.0
     fds = np.array([4.0, 5.5, 6.5, 7.0, 7.5, 8.5, 10.0])
     vals = []
@@ -139,7 +139,7 @@ def test_verification_rejects_an_inaccurate_orbit(monkeypatch):
 def test_no_coarse_run_when_the_fine_grid_has_no_steady_state():
     """Richardson needs both grids' steady states: when grid N has none (here: from rest, given
     2 periods), the N / 2 run is skipped, and the result says so instead of extrapolating."""
-    from rotbeam.simulate.scene import build_scene
+    from rotbeam.runs.scene import build_scene
 
     num = {"N": 6, "start": "rest", "max_periods": 2, "extrapolate": True}
     res = simulate(build_scene({"drive": {"omega0": 5.0, "f_d": 2.0}, "numerics": num}))

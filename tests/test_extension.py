@@ -60,7 +60,7 @@ def test_extension_off_benchmark_rms_unchanged():
     642035f) gives it with one BLAS thread as the suite runs (conftest), to the last bits
     (ROUNDING: with two threads that code gives ...598 in the last digits, and so does this one;
     on an AMD EPYC both give 0.0105561750364926 and 0.009654891687129973)."""
-    from rotbeam.simulate.scene import build_scene, simulate
+    from rotbeam.runs.scene import build_scene, simulate
 
     r = simulate(build_scene({"drive": {"omega0": 5.0, "f_d": 2.0}, "numerics": {"N": 12}}))
     assert r.rms_dynamic == pytest.approx(0.010556175036492595, rel=ROUNDING, abs=0)

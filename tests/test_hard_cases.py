@@ -1,6 +1,6 @@
 """Hard cases stay numerically stable (issue #6).
 
-Every case runs the real solver (`rotbeam.simulate.scene.simulate`: quasi-static Newton, periodic
+Every case runs the real solver (`rotbeam.runs.scene.simulate`: quasi-static Newton, periodic
 collocation, time stepping) and checks
 
 * no NaN/inf in any returned array, the reported RMS values are the RMS of the returned samples;
@@ -31,7 +31,7 @@ from rotbeam.model.elastica import DiscreteElastica
 from rotbeam.model.grid import Grid
 from rotbeam.model.modes import linear_forced_response
 from rotbeam.model.params import Beam, Dimensionless, Drive, Effects, fd_for_emax, omega0_for_cmax
-from rotbeam.simulate.scene import Scene, SceneResult, quasistatic_midspan, simulate
+from rotbeam.runs.scene import Scene, SceneResult, quasistatic_midspan, simulate
 from rotbeam.solve.numerics import Numerics
 
 try:

@@ -23,7 +23,7 @@ LAYERS = (
     "config",
     "model",
     "solve",
-    "simulate",
+    "runs",
     "analysis",
     "report",
     "bench",
@@ -32,7 +32,7 @@ LAYERS = (
 )
 
 #: the package's own namespace (`import rotbeam`) gathers the public API from the core layers
-ROOT_MAY_IMPORT = ("config", "model", "solve", "simulate", "analysis", "report")
+ROOT_MAY_IMPORT = ("config", "model", "solve", "runs", "analysis", "report")
 
 
 def layer_of(module: str) -> str | None:
@@ -119,8 +119,8 @@ def test_the_check_can_fail():
     assert violations(lazy, "rotbeam.solve.steady") == [
         "rotbeam.solve.steady:2 (solve) imports rotbeam.report.style (report, a higher layer)"
     ]
-    assert violations("from ..simulate import scene\n", "rotbeam.model.surrogate") == [
-        "rotbeam.model.surrogate:1 (model) imports rotbeam.simulate (simulate, a higher layer)"
+    assert violations("from ..runs import scene\n", "rotbeam.model.surrogate") == [
+        "rotbeam.model.surrogate:1 (model) imports rotbeam.runs (runs, a higher layer)"
     ]
     assert violations("from .. import cli\n", "rotbeam.solve", is_package=True) == [
         "rotbeam.solve:1 (solve) imports rotbeam.cli (cli, a higher layer)"
@@ -137,7 +137,7 @@ def test_the_check_can_fail():
     assert violations("from .cli import main\n", "rotbeam", is_package=True) == [
         "rotbeam:1 (package root) imports rotbeam.cli"
     ]
-    assert violations("from .simulate.scene import Scene\n", "rotbeam", is_package=True) == []
+    assert violations("from .runs.scene import Scene\n", "rotbeam", is_package=True) == []
     # the same layer and the layers below are allowed, relative or absolute
     ok = "from .criterion import rms\nfrom ..model import params\nimport rotbeam.model.modes\n"
     assert violations(ok, "rotbeam.model.surrogate") == []

@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from rotbeam.simulate.response import classify, section_distances
+from rotbeam.runs.response import classify, section_distances
 from rotbeam.solve.continuation import FirstOrderProblem, continue_branch
 from rotbeam.solve.lyapunov import largest_lyapunov, late_rate
 

@@ -1,4 +1,4 @@
-"""The large-drive resonance (rotbeam.simulate.nonlinear, workflow target `nonlinear`): where the
+"""The large-drive resonance (rotbeam.runs.nonlinear, workflow target `nonlinear`): where the
 branch of periodic orbits loses stability against what time stepping does, which goes through
 neither the continuation nor the Floquet multipliers."""
 
@@ -12,7 +12,7 @@ from conftest import steady
 
 from rotbeam.model.criterion import rms
 from rotbeam.model.params import Beam, Dimensionless, Drive, Effects
-from rotbeam.simulate.nonlinear import (
+from rotbeam.runs.nonlinear import (
     NonlinearSpec,
     branch_arm,
     fold_row,

@@ -33,7 +33,7 @@ import peer_pyelastica as pe  # noqa: E402
 
 from rotbeam.model.elastica import DiscreteElastica  # noqa: E402
 from rotbeam.model.params import Beam  # noqa: E402
-from rotbeam.simulate.scene import build_scene, simulate  # noqa: E402
+from rotbeam.runs.scene import build_scene, simulate  # noqa: E402
 
 pytestmark = pytest.mark.slow
 

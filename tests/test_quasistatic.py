@@ -80,7 +80,7 @@ def test_batched_static_equals_continuation(monkeypatch, omega0, f_d, a):
     """All instants in one batched Newton give the same quasi-static series as the robust path
     (sequential continuation in time), down to Newton's tolerance: small angles (chord Newton),
     just below its 0.1 rad limit (a = 1.8: 0.09 rad), across it and large (plain Newton)."""
-    from rotbeam.simulate.scene import build_scene
+    from rotbeam.runs.scene import build_scene
     from rotbeam.solve import quasistatic
 
     dl = build_scene({"drive": {"omega0": omega0, "f_d": f_d, "amplitude": a}}).dimensionless

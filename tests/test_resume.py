@@ -19,11 +19,11 @@ import pandas as pd
 import pytest
 from conftest import QUICK, copy_workflow, job_counts, snakemake, snakemake_env
 
-import rotbeam.simulate.sweeps
+import rotbeam.runs.sweeps
 from rotbeam.analysis.boundary import boundary_table, c_per_threshold, fit_c
 from rotbeam.model.params import Beam
 from rotbeam.report.io import atomic_write, write_csv
-from rotbeam.simulate.sweeps import COLUMNS, scan_line
+from rotbeam.runs.sweeps import COLUMNS, scan_line
 from rotbeam.solve.numerics import Numerics
 
 REF_BEAM = dict(L=0.040, h=0.002, b=0.010, E=1.22e6, rho=1170.2, R=0.155, gamma=0.039)
@@ -33,7 +33,7 @@ REF_BEAM = dict(L=0.040, h=0.002, b=0.010, E=1.22e6, rho=1170.2, R=0.155, gamma=
 
 
 def test_failed_sweep_points_are_rows_with_their_reason(monkeypatch, tmp_path):
-    simulate = rotbeam.simulate.sweeps.simulate
+    simulate = rotbeam.runs.sweeps.simulate
 
     def flaky(scene, **kw):
         if scene.drive.f_d == 2.0:  # the solver raises
@@ -44,7 +44,7 @@ def test_failed_sweep_points_are_rows_with_their_reason(monkeypatch, tmp_path):
             scene = replace(scene, numerics=num)
         return simulate(scene, **kw)
 
-    monkeypatch.setattr(rotbeam.simulate.sweeps, "simulate", flaky)
+    monkeypatch.setattr(rotbeam.runs.sweeps, "simulate", flaky)
     log = []
     df = scan_line(Beam(), 5.0, [1.0, 2.0, 3.0, 4.0], numerics=Numerics(N=6), log=log.append)
     assert list(df["f_d"]) == [1.0, 2.0, 3.0, 4.0] and list(df.columns) == COLUMNS

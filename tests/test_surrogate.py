@@ -4,7 +4,7 @@ Independent references: the classical Southwell/Lo value 1.1933 (hub 0, flapwise
 (1982) frequencies as reprinted in tests/test_modes_published.py; the slope d(w^2)/d(lam^2) at
 lam -> 0 of the discrete eigenproblem (first-order perturbation theory makes it equal the Rayleigh
 quotient of the unperturbed mode); closed-form static cantilever deflections; time integration of
-the surrogate ODE; the full discrete model (`rotbeam.simulate.scene.simulate`).
+the surrogate ODE; the full discrete model (`rotbeam.runs.scene.simulate`).
 """
 
 from __future__ import annotations
@@ -31,7 +31,7 @@ from rotbeam.model.surrogate import (
     southwell_frequency_hz,
     steady_rms,
 )
-from rotbeam.simulate.scene import Scene, simulate
+from rotbeam.runs.scene import Scene, simulate
 from rotbeam.solve.numerics import Numerics
 
 BEAM = Beam()

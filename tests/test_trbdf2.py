@@ -10,7 +10,7 @@ import pytest
 from scipy.integrate import solve_ivp
 
 from rotbeam.model.elastica import DiscreteElastica
-from rotbeam.simulate.scene import build_scene
+from rotbeam.runs.scene import build_scene
 from rotbeam.solve.steady import initial_state
 from rotbeam.solve.trbdf2 import (
     A_Y,

@@ -13,8 +13,8 @@ from rotbeam.analysis.verdict import _lag_ratio, critical, judge
 from rotbeam.model.criterion import critical_from_scan
 from rotbeam.model.params import Beam, Drive, Effects
 from rotbeam.model.secondorder import delta_rms_canonical
-from rotbeam.simulate.scene import Scene, simulate
-from rotbeam.simulate.sweeps import scan_line
+from rotbeam.runs.scene import Scene, simulate
+from rotbeam.runs.sweeps import scan_line
 from rotbeam.solve.numerics import Numerics
 
 NUM = Numerics(N=20)

@@ -31,7 +31,7 @@ from typing import Any
 from ..config.errors import RotbeamInputError
 from ..config.scenefile import AUTO_TOL as _AUTO_TOL
 from ..model.params import Effects
-from ..simulate.scene import Scene, SceneResult, simulate
+from ..runs.scene import Scene, SceneResult, simulate
 
 #: relative step of gamma for the damping's first-order share
 GAMMA_STEP = 0.01

@@ -1,7 +1,7 @@
 """Beam parameters (E and gamma by default) from a measured resonance curve RMS(y_m)(f_d).
 
 Least squares with the full model: every residual evaluation runs one periodic steady state per
-measured f_d (`rotbeam.simulate.scene.simulate`), each seeded with the orbit of the previous
+measured f_d (`rotbeam.runs.scene.simulate`), each seeded with the orbit of the previous
 evaluation at the same f_d, and evaluations are cached by parameter values (the Jacobian's base
 point is the last residual's).  The fitted parameters are u = log(X / X_start) (positivity, and
 relative steps); the Jacobian is a forward difference of STEP in u.
@@ -34,7 +34,7 @@ from scipy.stats import t as student_t
 from ..config.errors import RotbeamInputError
 from ..model.modes import resonance_frequency_hz
 from ..model.params import Beam, Drive, Effects
-from ..simulate.scene import Scene, simulate
+from ..runs.scene import Scene, simulate
 from ..solve.numerics import Numerics
 from .measurements import ResonanceCurve
 

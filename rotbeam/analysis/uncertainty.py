@@ -33,7 +33,7 @@ from ..config.errors import RotbeamInputError
 from ..model.params import Beam, Drive
 
 if TYPE_CHECKING:
-    from ..simulate.scene import Scene, SceneResult
+    from ..runs.scene import Scene, SceneResult
     from .verdict import Critical
 
 BEAM_FIELDS = ("L", "h", "b", "E", "rho", "R", "gamma")
@@ -279,7 +279,7 @@ def simulate_spread(
     -------
     Propagated
     """
-    from ..simulate.scene import simulate
+    from ..runs.scene import simulate
 
     orbit = plain.dynamic.periodic
     guess = orbit.theta.T if orbit is not None and orbit.converged else None

@@ -33,7 +33,7 @@ from ..config.errors import RotbeamInputError
 from ..model.modes import resonance_frequency_hz
 from ..model.params import Beam
 from ..model.secondorder import c0_root
-from ..simulate.scene import Scene, SceneResult, simulate
+from ..runs.scene import Scene, SceneResult, simulate
 
 
 @dataclass(frozen=True)

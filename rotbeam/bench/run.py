@@ -40,7 +40,7 @@ from ..model.criterion import delta_rms, rms
 from ..model.elastica import DiscreteElastica
 from ..model.params import Dimensionless, Drive, Effects
 from ..model.surrogate import steady_rms
-from ..simulate.scene import Scene, quasistatic_midspan, simulate
+from ..runs.scene import Scene, quasistatic_midspan, simulate
 from ..solve.extrapolation import richardson
 from ..solve.numerics import Numerics
 from ..solve.system import FirstOrderSystem, OutOfTime

@@ -17,7 +17,7 @@ from dataclasses import replace
 import pandas as pd
 
 from ..model.params import Beam, Drive, Effects
-from ..simulate.scene import Scene, simulate
+from ..runs.scene import Scene, simulate
 from ..solve import floquet
 from ..solve.numerics import Numerics
 from .plan import SCENES

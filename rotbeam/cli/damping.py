@@ -25,7 +25,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 def scene_beam(path: str | None):
     """The scene of a --scene file (its drive and effects as given, the rest defaults)."""
     from ..config.scenefile import load_scene_file, scene_sections, split_auto
-    from ..simulate.scene import build_scene
+    from ..runs.scene import build_scene
 
     raw = dict(load_scene_file(path)) if path else {}
     raw.pop("uncertainty", None)

@@ -28,7 +28,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Parse, solve the eigenproblem, print."""
-    from ..model.modes import dimensionless_frequencies, natural_frequencies_hz
+    from ..model.modes import dimensionless_frequencies, modes
     from ..model.params import BETA1, C_MAX_LIMIT
 
     N = options.option(args, "numerics", "N")
@@ -48,7 +48,7 @@ def run(args: argparse.Namespace) -> int:
         beam = _beam(args)
         omega = options.option(args, "modes", "omega")
         _check_rotation("--omega", omega, beam.G * omega * omega, "G Omega^2", C_MAX_LIMIT)
-        f = natural_frequencies_hz(beam, omega, count, N, soft)
+        f = modes(beam, omega, count, N, soft)
         out = {"frequencies_hz": f.tolist(), "omega": omega, "f_n_hz": beam.f_n}
     if args.json:
         show.as_json(out)

@@ -156,7 +156,7 @@ def scene_request(args: argparse.Namespace, needs: tuple[str, ...] = ("omega0", 
     """
     from ..config.scenefile import auto_tol, load_scene_file, scene_sections, split_auto
     from ..model.params import Effects
-    from ..simulate.scene import build_scene
+    from ..runs.scene import build_scene
 
     raw = dict(load_scene_file(args.scene)) if args.scene else {}
     section = raw.pop("uncertainty", None)

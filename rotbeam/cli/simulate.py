@@ -37,8 +37,8 @@ def run(args: argparse.Namespace) -> int:
     scene, tol, inputs = options.scene_request(args)
 
     from ..analysis.verdict import judge
-    from ..simulate.response import response_of_result
-    from ..simulate.scene import simulate
+    from ..runs.response import response_of_result
+    from ..runs.scene import simulate
 
     summary = {}
     if tol is not None:

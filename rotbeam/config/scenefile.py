@@ -1,6 +1,6 @@
 """Scene files: YAML with sections `beam`, `drive`, `effects`, `numerics` whose keys are the
 registry's fields (rotbeam.config.parameters); unknown sections or keys are errors naming the key,
-its value and what is allowed.  The objects are built in rotbeam.simulate.scene.
+its value and what is allowed.  The objects are built in rotbeam.runs.scene.
 
 `effects: auto` (or `effects: {auto: TOL}`, or the flag's spelling `auto:TOL`) asks for the effects
 the scene's effect budget calls for (rotbeam.analysis.effect_budget.auto_effects); `split_auto`

@@ -110,8 +110,8 @@ def dimensionless_frequencies(
                               n_modes)  # fmt: skip
 
 
-def natural_frequencies_hz(
-    beam: Beam, omega: float, n_modes: int = 1, N: int = 40, softening: bool = True
+def modes(
+    beam: Beam, omega: float = 0.0, n_modes: int = 1, N: int = 40, softening: bool = True
 ) -> np.ndarray:
     """Natural frequencies [Hz] of `beam` spinning steadily at `omega` rad/s.
 
@@ -178,4 +178,4 @@ def resonance_frequency_hz(beam: Beam, omega0: float, amplitude: float = 1.0, N:
     -------
     float
     """
-    return float(natural_frequencies_hz(beam, abs(omega0) + amplitude, 1, N, softening=True)[0])
+    return float(modes(beam, abs(omega0) + amplitude, 1, N, softening=True)[0])

@@ -39,7 +39,7 @@ from scipy.linalg import solve_banded
 from ..config.checks import check_threshold
 from ..config.errors import RotbeamInputError
 from .criterion import delta_rms, first_crossing
-from .modes import natural_frequencies_hz
+from .modes import modes
 from .params import BETA1, Beam, Dimensionless, Drive, Effects
 
 #: Gauss-Legendre nodes on [0, 1]; the integrands are entire functions, 48 nodes reach round-off.
@@ -379,11 +379,11 @@ def analytical_boundary_exact(
 ) -> float | np.ndarray:
     """E* = c G a 2 pi f0 with f0 the exact first frequency at Omega_0 + a = sqrt(C_max / G).
 
-    f0 from `rotbeam.modes.natural_frequencies_hz` (discrete model, N intervals) instead of
+    f0 from `rotbeam.modes.modes` (discrete model, N intervals) instead of
     the Southwell line.
     """
     G = beam.G
     cm = np.atleast_1d(np.asarray(c_max, dtype=float))
-    f0 = np.array([natural_frequencies_hz(beam, math.sqrt(x / G), 1, N, softening)[0] for x in cm])
+    f0 = np.array([modes(beam, math.sqrt(x / G), 1, N, softening)[0] for x in cm])
     out = c * G * amplitude * 2.0 * math.pi * f0
     return out if np.ndim(c_max) else float(out[0])

@@ -47,7 +47,7 @@ from scipy.interpolate import PchipInterpolator
 from ..config.checks import check_positive, check_threshold
 from ..config.errors import RotbeamInputError
 from ..model.criterion import critical_from_scan, rms
-from ..model.modes import natural_frequencies_hz, resonance_frequency_hz
+from ..model.modes import modes, resonance_frequency_hz
 from ..model.params import Beam, Dimensionless, Drive, Effects, omega0_for_cmax
 from ..model.surrogate import southwell_frequency_hz
 from .c_response import dynamic_response, hypothesis_quasistatic_midspan, midspan_measure
@@ -334,7 +334,7 @@ def f0_for(h: Hypothesis, beam: Beam, omega0: float, scan: ScanSpec = ScanSpec()
     if h.f0 == "linear_max":
         return resonance_frequency_hz(beam, omega0, a)
     if h.f0 == "linear_mean":
-        return float(natural_frequencies_hz(beam, abs(omega0), 1, 80)[0])
+        return float(modes(beam, abs(omega0), 1, 80)[0])
     if h.f0 in ("southwell_flap", "southwell_inplane"):
         return southwell_frequency_hz(beam, abs(omega0) + a, softening=h.f0 == "southwell_inplane")
     if h.f0 == "fn_printed":

@@ -26,7 +26,7 @@ from ..bench.plan import SCENES
 from ..bench.stability_cost import WORKFLOW_NUMERICS
 from ..config.errors import RotbeamInputError
 from ..model.params import Beam, Drive, Effects
-from ..simulate.scene import Scene, simulate
+from ..runs.scene import Scene, simulate
 from ..solve import floquet
 
 
@@ -89,7 +89,7 @@ def step_table(scenes=SCENES, repeats: int = 3) -> pd.DataFrame:
 def column_table(column: str, config_path: str = "config/config.yaml") -> pd.DataFrame:
     """One row per Floquet pass of a Fig. 7 grid column, as `sweep_grid_column` runs it."""
     from ..config.scenefile import load_yaml
-    from ..simulate.sweeps import numerics_from_config
+    from ..runs.sweeps import numerics_from_config
     from .studies import fig7_beams, grid_columns, run_grid_lines
 
     path = Path(config_path)

@@ -246,10 +246,10 @@ def fn_zeta_study(beam: Beam, inputs: dict, f_paper: float, zeta_paper: float, N
     frequency at the paper's N, beta_1 = 1.875 as printed, zeta = gamma / (2 rho A omega_n) with
     the printed f_n) and the pairs (one input for f_n, gamma for zeta).  Returns (table, long
     table)."""
-    from ..model.modes import natural_frequencies_hz
+    from ..model.modes import modes
 
     table, long = single_change_study(beam, inputs, f_paper, zeta_paper)
-    f_disc = float(natural_frequencies_hz(beam, 0.0, 1, N, softening=True)[0])
+    f_disc = float(modes(beam, 0.0, 1, N, softening=True)[0])
     f_b, z_b = fn_zeta(beam, float(inputs.get("beta1", {}).get("paper", 1.875)))
     z_f = beam.gamma / (2.0 * beam.rhoA * 2.0 * math.pi * f_paper)
     extra = [

@@ -21,7 +21,7 @@ import pandas as pd
 from ..analysis.verdict import critical
 from ..model.grid import centrifugal_strain
 from ..model.params import Beam, Dimensionless, Drive, Effects, omega0_for_cmax
-from ..simulate.scene import Scene, simulate
+from ..runs.scene import Scene, simulate
 from ..solve.numerics import Numerics
 
 COLUMNS = ["C_max", "omega0", "clamp_strain", "studied", "f_d_star_off", "f_d_star_on",

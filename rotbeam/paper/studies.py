@@ -132,7 +132,7 @@ def run_line(spec: dict[str, Any], f_ds: list[float], effects, numerics,
     """One sweep line (a spec of `lines_from_config`, `boundary_lines` or `convergence_lines`)
     at its drive frequencies `f_ds`: a row per point, with `c_max_target` first when the line
     belongs to a C_max."""
-    from ..simulate.sweeps import scan_line
+    from ..runs.sweeps import scan_line
 
     df = scan_line(Beam(**spec["beam"]), spec["omega0"], f_ds, amplitude=spec["amplitude"],
                    effects=effects, numerics=numerics, log=log)  # fmt: skip
@@ -213,7 +213,7 @@ def check_config(config: dict[str, Any], schema: dict | None = None) -> None:
                 Beam(**beam)
             except RotbeamInputError as exc:
                 raise RotbeamInputError(f"{where} beam {bid}: {exc}") from None
-    from ..simulate.sweeps import numerics_from_config
+    from ..runs.sweeps import numerics_from_config
 
     Effects.from_list(config["effects"])
     numerics_from_config(config.get("numerics"))
@@ -323,7 +323,7 @@ def run_convergence_lines(
     N and no Richardson extrapolation."""
     import pandas as pd
 
-    from ..simulate.sweeps import numerics_from_config
+    from ..runs.sweeps import numerics_from_config
 
     frames = []
     for lid, spec in lines.items():
@@ -359,7 +359,7 @@ def scan_frequencies(spec: dict[str, Any]) -> list[float]:
     """The drive frequencies of a line (explicit list, or f_0-relative scan)."""
     if "f_d" in spec:
         return [float(f) for f in spec["f_d"]]
-    from ..simulate.sweeps import boundary_scan_frequencies
+    from ..runs.sweeps import boundary_scan_frequencies
 
     s = spec["scan"]
     f = boundary_scan_frequencies(

@@ -26,7 +26,7 @@ import pandas as pd
 from ..analysis.boundary import boundary_table
 from ..config.errors import RotbeamInputError
 from ..model.criterion import critical_from_scan
-from ..model.modes import natural_frequencies_hz
+from ..model.modes import modes
 from ..model.params import Beam, Dimensionless, Drive, Effects, omega0_for_cmax
 from ..model.surrogate import (
     analytical_boundary,
@@ -84,7 +84,7 @@ def southwell_table(
 
     def freqs(omega: float) -> dict:
         fs = southwell_frequency_hz(b, omega, softening=True)
-        fe = float(natural_frequencies_hz(b, omega, 1, N, softening=True)[0])
+        fe = float(modes(b, omega, 1, N, softening=True)[0])
         return {"omega": omega, "f_n_hz": b.f_n, "f0_southwell_hz": fs, "f0_exact_hz": fe,
                 "rel_error_southwell": fs / fe - 1.0}  # fmt: skip
 
@@ -111,7 +111,7 @@ def southwell_table(
 def discretisation_floor(beam: dict, N: int) -> float:
     """f_1(Omega = 0) of the discrete model over the continuum f_n, minus 1 (error at N)."""
     b = Beam(**beam)
-    return float(natural_frequencies_hz(b, 0.0, 1, N, softening=True)[0]) / b.f_n - 1.0
+    return float(modes(b, 0.0, 1, N, softening=True)[0]) / b.f_n - 1.0
 
 
 # --- surrogate vs full model -----------------------------------------------------------------
@@ -213,7 +213,7 @@ def _line_row(
     f_sur, t_crit, msg = _surrogate_critical(b, w0, threshold, a, effects, n_scan)
     f_grid = critical_from_scan(p["f_d"].to_numpy(), p["sur_delta_rms"].to_numpy(), threshold)
     e = b.G * a * 2.0 * math.pi
-    f0_ex = float(natural_frequencies_hz(b, abs(w0) + a, 1, N, softening=True)[0])
+    f0_ex = float(modes(b, abs(w0) + a, 1, N, softening=True)[0])
     f0_sw = southwell_frequency_hz(b, abs(w0) + a, effects.softening)
     rel = f_sur / f_full - 1.0
     rel_grid = f_grid["f_d_root"] / f_full - 1.0

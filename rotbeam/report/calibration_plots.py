@@ -77,7 +77,7 @@ def plot_identification_run(curve: ResonanceCurve, fit: Identification, scene, o
     import numpy as np
 
     from ..model.params import Beam
-    from ..simulate.sweeps import scan_line
+    from ..runs.sweeps import scan_line
 
     lo, hi = float(curve.f_d[0]), float(curve.f_d[-1])
     grid = np.linspace(lo - 0.05 * (hi - lo), hi + 0.05 * (hi - lo), 41)

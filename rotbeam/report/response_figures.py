@@ -6,8 +6,8 @@ from pathlib import Path
 
 import numpy as np
 
-from ..simulate.response import ResponseResult
-from ..simulate.scene import Scene
+from ..runs.response import ResponseResult
+from ..runs.scene import Scene
 from .style import DYN, GREY, figure, save
 
 

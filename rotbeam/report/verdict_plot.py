@@ -8,7 +8,7 @@ from pathlib import Path
 
 from ..analysis.verdict import Verdict
 from ..config.checks import check_plot_suffix
-from ..simulate.scene import SceneResult
+from ..runs.scene import SceneResult
 from .style import DYN, QS, figure, save
 
 

@@ -37,7 +37,7 @@ class Numerics:
     #: the verification period; "time": always one period of time stepping (rotbeam.solve.steady)
     certify: str = _d("certify")
     jacobian: str = _d("jacobian")  #: "exact" (analytic) or "fd" (the stepper's differences)
-    extrapolate: bool = _d("extrapolate")  #: Richardson from N and N // 2 (rotbeam.simulate)
+    extrapolate: bool = _d("extrapolate")  #: Richardson from N and N // 2 (rotbeam.runs)
 
     def __post_init__(self) -> None:
         check_fields(self, "numerics")

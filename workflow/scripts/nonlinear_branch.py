@@ -8,7 +8,7 @@ import pandas as pd
 from rotbeam.model.params import Beam
 from rotbeam.report.io import write_csv
 from rotbeam.report.joblog import job_log
-from rotbeam.simulate.nonlinear import NonlinearSpec, run_amplitude
+from rotbeam.runs.nonlinear import NonlinearSpec, run_amplitude
 
 with job_log(snakemake.log[0], snakemake.input, snakemake.output, snakemake.rule) as log:
     p = snakemake.params

@@ -9,8 +9,8 @@ from rotbeam.model.params import Beam, Drive
 from rotbeam.report.io import write_csv, write_json
 from rotbeam.report.joblog import job_log
 from rotbeam.report.nonlinear_figures import response_figure
-from rotbeam.simulate.response import response_of
-from rotbeam.simulate.scene import Scene
+from rotbeam.runs.response import response_of
+from rotbeam.runs.scene import Scene
 from rotbeam.solve.numerics import Numerics
 
 with job_log(snakemake.log[0], snakemake.input, snakemake.output, snakemake.rule) as log:

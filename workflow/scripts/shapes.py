@@ -8,8 +8,8 @@ from rotbeam.model.params import Beam, Drive, Effects
 from rotbeam.model.shapes import shapes_over_period
 from rotbeam.report.io import write_csv
 from rotbeam.report.joblog import job_log
-from rotbeam.simulate.scene import Scene, simulate
-from rotbeam.simulate.sweeps import numerics_from_config
+from rotbeam.runs.scene import Scene, simulate
+from rotbeam.runs.sweeps import numerics_from_config
 
 with job_log(snakemake.log[0], snakemake.input, snakemake.output, snakemake.rule) as log:
     p = snakemake.params

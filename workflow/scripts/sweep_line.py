@@ -6,7 +6,7 @@ from rotbeam.model.params import Effects
 from rotbeam.paper.studies import run_line, scan_frequencies
 from rotbeam.report.io import write_csv
 from rotbeam.report.joblog import job_log
-from rotbeam.simulate.sweeps import numerics_from_config
+from rotbeam.runs.sweeps import numerics_from_config
 
 with job_log(snakemake.log[0], snakemake.input, snakemake.output, snakemake.rule) as log:
     say = log.info  # one line per point of the line (scan_line's progress)

@@ -11,6 +11,7 @@ import math
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, replace
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -52,6 +53,27 @@ def build_scene(spec: dict[str, Any] | None = None) -> Scene:
     scene = Scene(**{name: cls(**sections.get(name, {})) for name, cls in CLASSES.items()})
     check_model_range(scene.beam, scene.drive)
     return scene
+
+
+def load_scene(path: str | Path) -> Scene:
+    """The scene of a YAML scene file (sections beam, drive, effects, numerics; omitted keys
+    take the registry's defaults; its `uncertainty` section and `effects: auto` are the command
+    line's and are not read here).
+
+    Parameters
+    ----------
+    path : str or Path
+        The file.
+
+    Returns
+    -------
+    Scene
+    """
+    from ..config.scenefile import load_scene_file, split_auto
+
+    raw = dict(load_scene_file(path))
+    raw.pop("uncertainty", None)
+    return build_scene(split_auto(raw)[0])
 
 
 @dataclass
