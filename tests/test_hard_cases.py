@@ -678,9 +678,11 @@ def test_overdamped_converged_means_reached():
         rms_periodic=ref.rms_dynamic,
         cpu=cpu,
     )
-    if res.converged:
-        # ss_tol = 1e-3 bounds the remaining transient relative to max |Theta|
-        assert res.rms_dynamic == pytest.approx(ref.rms_dynamic, rel=1e-2)
+    # reached (ss_tol = 1e-3 bounds the remaining transient relative to max |Theta|, so RMS is
+    # within that of the collocated orbit; measured 1.2e-4): a transient called steady too early
+    # would be further off
+    assert res.converged and res.dynamic.periods > 2
+    assert res.rms_dynamic == pytest.approx(ref.rms_dynamic, rel=1e-3)
 
 
 def test_overdamped_above_corner_steady_on_coarse_grid():
