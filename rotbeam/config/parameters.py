@@ -21,8 +21,9 @@ from .schema import g
 
 @dataclass(frozen=True)
 class Param:
-    """One field: `kind` is "real", "int", "bool" or "choice"; bounds are inclusive unless
-    `lo_open` / `hi_open` (None: unbounded)."""
+    """One field: `kind` is "real", "int", "bool", "choice" or "data" (a structure its class
+    checks: harmonics, sampled speeds); bounds are inclusive unless `lo_open` / `hi_open` (None:
+    unbounded); `optional` fields may be None."""
 
     kind: str
     default: Any
@@ -33,6 +34,7 @@ class Param:
     lo_open: bool = False
     choices: tuple[str, ...] = ()
     hi_open: bool = False
+    optional: bool = False
 
 
 def _real(default, help, unit="", lo=None, hi=None, lo_open=False, hi_open=False) -> Param:
@@ -51,6 +53,10 @@ def _choice(default, help, *choices) -> Param:
     return Param("choice", default, help, choices=choices)
 
 
+def _data(default, help) -> Param:
+    return Param("data", default, help)
+
+
 #: Every section of a scene and its fields, in the order of the dataclasses.
 SECTIONS: dict[str, dict[str, Param]] = {
     "beam": {
@@ -62,11 +68,25 @@ SECTIONS: dict[str, dict[str, Param]] = {
         # R is not printed in the paper; 0.155 m follows from the C and E ranges of Sec. 5
         "R": _real(0.155, "axis to undeformed tip, > L (clamp at R - L)", "m", 0, lo_open=True),
         "gamma": _real(0.039, "viscous damping per unit length (App. B)", "N s/m^2", 0),
+        "tip_mass": _real(0.0, "point mass at the free end (a payload)", "kg", 0),
+        "tip_inertia": _real(0.0, "its rotary inertia about its own centre", "kg m^2", 0),
     },
     "drive": {
         "omega0": _real(5.0, "mean angular velocity Omega_0", "rad/s"),
         "amplitude": _real(1.0, "velocity amplitude a", "rad/s", 0),
-        "f_d": _real(7.0, "drive frequency", "Hz", 0, lo_open=True),
+        "f_d": _real(7.0, "drive (repetition) frequency", "Hz", 0, lo_open=True),
+        "harmonics": _data((), "harmonics {k, amplitude [rad/s], phase [rad]} replacing amplitude"),
+        "profile": _data(None, "one period of sampled speed: CSV (phase, omega) or a named shape"),
+        "move": _data(None, "a single move: CSV with columns t [s], omega [rad/s]"),
+        "settle": Param(
+            "real",
+            None,
+            "time after a move (default: until calm, at most 20 first-mode periods)",
+            "s",
+            0,
+            lo_open=True,
+            optional=True,
+        ),  # fmt: skip
     },
     "effects": {
         "centrifugal": _bool(True, "centrifugal load C (1 - delta + delta x)"),
@@ -156,6 +176,8 @@ def default(section: str, name: str) -> Any:
 
 def allowed(p: Param) -> str:
     """What a field accepts, in words (for error messages and help)."""
+    if p.kind == "data":
+        return "see the docs"
     if p.kind == "bool":
         return "true or false"
     if p.kind == "choice":
@@ -181,6 +203,8 @@ def check_value(section: str, name: str, value: Any) -> Any:
     `section.name`, the value and what is allowed."""
     p = param(section, name)
     key = f"{section}.{name}"
+    if p.kind == "data" or (p.optional and value is None):
+        return value
     if p.kind == "bool":
         if not isinstance(value, (bool, np.bool_)):
             raise RotbeamInputError(f"{key} must be true or false, got {value!r}")
@@ -220,5 +244,7 @@ def help_text(section: str, name: str) -> str:
     """`help [unit] (default ...; allowed ...)` for a CLI flag."""
     p = param(section, name)
     unit = f" [{p.unit}]" if p.unit else ""
-    shown = f"{p.default:g}" if p.kind in ("real", "int") else str(p.default)
+    shown = (
+        f"{p.default:g}" if p.kind in ("real", "int") and p.default is not None else str(p.default)
+    )
     return f"{p.help}{unit} (default {shown}; {allowed(p)})"

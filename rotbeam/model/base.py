@@ -22,10 +22,11 @@ class DiscreteModel(ABC):
 
     The model is second order in the n angles Theta,
 
-        M(Theta) (Theta_tt + eta Theta_t) + S(Theta) Theta_t^2 + 2 lam B(Theta) Theta_t
+        M(Theta) Theta_tt + eta Md(Theta) Theta_t + S(Theta) Theta_t^2 + 2 lam B(Theta) Theta_t
             + K Theta + L(Theta; lam, lam_dot) = 0,
 
-    with the Coriolis term only when `effects.coriolis` is on.  A subclass gives the mass and
+    with the Coriolis term only when `effects.coriolis` is on and Md = M unless the model says
+    otherwise (`damping_rows`: a payload has no damping of its own).  A subclass gives the mass and
     gyroscopic matrices M, B (`inertia_rows`), the stiffness K (`stiffness`), the loads L and
     their exact Jacobian (`load_torque_rows`), the scene it is built for (`dl`, with the drive
     lam(tau), lam_dot(tau)) and a copy of itself for another scene (`at`).  S, the matrix of the
@@ -100,6 +101,11 @@ class DiscreteModel(ABC):
     def at(self, dl: Dimensionless) -> DiscreteModel:
         """The same model (grid, structure) for another scene `dl`."""
 
+    def damping_rows(self, theta: np.ndarray) -> tuple[np.ndarray, np.ndarray] | None:
+        """The mass matrix the damping acts on and its gyroscopic partner, (Md, Bd) at m
+        instants, when it is not M (a payload has no damping of its own); None: eta M."""
+        return None
+
     def velocity_matrix_rows(self, theta: np.ndarray, B: np.ndarray) -> np.ndarray:
         """S, the matrix multiplying Theta_t^2, at m instants: B (the derivation's), unless a
         model says otherwise (the printed appendix).  The Jacobians use B either way."""
@@ -156,8 +162,12 @@ class DiscreteModel(ABC):
         S = self.velocity_matrix_rows(theta[None], B[None])[0]
         if S is not B:
             rhs -= (S - B) @ (theta_t**2)
+        damp = self.damping_rows(theta[None])
         lu = lu_factor(M, check_finite=False)
-        return lu_solve(lu, rhs, check_finite=False) - self.eta * theta_t
+        if damp is None:
+            return lu_solve(lu, rhs, check_finite=False) - self.eta * theta_t
+        rhs -= self.eta * (damp[0][0] @ theta_t)
+        return lu_solve(lu, rhs, check_finite=False)
 
     def first_order_rows(
         self, theta: np.ndarray, theta_t: np.ndarray, lam: np.ndarray, lam_dot: np.ndarray
@@ -188,6 +198,9 @@ class DiscreteModel(ABC):
         S = self.velocity_matrix_rows(theta, B)
         if S is not B:
             forces -= np.einsum("mij,mj->mi", S - B, theta_t**2)
+        damp = self.damping_rows(theta)
+        if damp is not None:
+            forces -= self.eta * np.einsum("mij,mj->mi", damp[0], theta_t)
         a0 = np.linalg.solve(M, forces[..., None])[..., 0]
         idx = np.arange(n)
         dr = -(K[None] + dL) + M * v[:, None, :] - B * a0[:, None, :]
@@ -195,14 +208,20 @@ class DiscreteModel(ABC):
         dv = 2.0 * B * theta_t[:, None, :]
         if self.effects.coriolis:
             dv = dv + 2.0 * lam[:, None, None] * B
+        if damp is not None:  # d(eta Md Theta_t)/dTheta = eta (Bd diag(Theta_t) - diag(Bd Theta_t))
+            Md, Bd = damp
+            dr -= self.eta * (Bd * theta_t[:, None, :])
+            dr[:, idx, idx] += self.eta * np.einsum("mij,mj->mi", Bd, theta_t)
+            dv = dv + self.eta * Md
         X = np.linalg.solve(M, np.concatenate([dr, dv], axis=2))
         J = np.zeros((theta.shape[0], 2 * n, 2 * n))
         J[:, idx, n + idx] = 1.0
         J[:, n:, :n] = X[:, :, :n]
         J[:, n:, n:] = -X[:, :, n:]
-        J[:, n + idx, n + idx] -= self.eta
-        F = np.concatenate([theta_t, a0 - self.eta * theta_t], axis=1)
-        return F, J
+        if damp is None:
+            J[:, n + idx, n + idx] -= self.eta
+            return np.concatenate([theta_t, a0 - self.eta * theta_t], axis=1), J
+        return np.concatenate([theta_t, a0], axis=1), J
 
     def first_order_jacobian(
         self, theta: np.ndarray, theta_t: np.ndarray, lam: float, lam_dot: float

@@ -30,6 +30,11 @@ class DiscreteElastica(DiscreteModel):
         self.hub_ratio = float(dl.hub_ratio)
         self.effects = dl.effects
         strain = None
+        if self.effects.extension and (dl.tip_mass or dl.tip_inertia):
+            raise RotbeamInputError(
+                "effects.extension with a tip mass or inertia: the stretched beam under a payload "
+                "is not modelled; switch one of them off"
+            )
         if self.effects.extension and self.effects.centrifugal:
             kappa = dl.kappa
             if not (math.isfinite(kappa) and kappa > 0):
@@ -38,9 +43,11 @@ class DiscreteElastica(DiscreteModel):
                 )
             s = np.arange(self.N + 1) / self.N
             strain = centrifugal_strain(s, self.hub_ratio, kappa, dl.lam_stretch)
-        self.grid = Grid.build(self.N, strain)
+        self.grid = Grid.build(self.N, strain, dl.tip_mass)
         self.n = self.N - 1
         self.eta = float(dl.eta) if self.effects.damping else 0.0
+        #: the payload's rotary inertia on the last angle's row, J / (rho A L^3) / ds
+        self.rotary = dl.tip_inertia / self.grid.ds
 
     def at(self, dl: Dimensionless) -> DiscreteElastica:
         """The model of scene `dl` on the same grid."""
@@ -54,8 +61,22 @@ class DiscreteElastica(DiscreteModel):
     def inertia_rows(self, theta: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """M_ij = W_ij cos(theta_i - theta_j) and B_ij = W_ij sin(theta_i - theta_j) at m
         instants, W = Q P; theta (m, n) -> two (m, n, n) arrays."""
+        M, B = self._cos_sin_rows(theta, self.grid.W)
+        if self.rotary:
+            M[:, -1, -1] += self.rotary
+        return M, B
+
+    def damping_rows(self, theta: np.ndarray) -> tuple[np.ndarray, np.ndarray] | None:
+        """With a payload, the beam's own M and B (W without the tip mass): the damping stays
+        per unit length of the beam.  None without one (eta M)."""
+        if self.grid.W_beam is None:
+            return None
+        return self._cos_sin_rows(theta, self.grid.W_beam)
+
+    @staticmethod
+    def _cos_sin_rows(theta: np.ndarray, W: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """W_ij cos(theta_i - theta_j) and W_ij sin(theta_i - theta_j) at m instants."""
         c, s = np.cos(theta), np.sin(theta)
-        W = self.grid.W
         M = c[:, :, None] * W * c[:, None, :] + s[:, :, None] * W * s[:, None, :]
         B = s[:, :, None] * W * c[:, None, :] - c[:, :, None] * W * s[:, None, :]
         return M, B
@@ -67,7 +88,10 @@ class DiscreteElastica(DiscreteModel):
         if not self.effects.euler:
             return np.zeros(self.n)
         x = g.s if g.strain is None else g.positions(np.zeros(self.n))[0]
-        return g.Q @ (self.hub_ratio + x)
+        q = g.Q @ (self.hub_ratio + x)
+        if self.rotary:  # the payload's rotary inertia turns with the disk
+            q[-1] += self.rotary
+        return q
 
     def _loads(self, c, s, lam, lam_dot):
         """Nodal load parts of F_x, F_y (nodes 1..N) from cos and sin of the angles."""
@@ -112,6 +136,8 @@ class DiscreteElastica(DiscreteModel):
         fx, fy = self._loads(c.T, s.T, lam, lam_dot)
         nx, ny = (g.Q @ fx).T, (g.Q @ fy).T
         torque = s * nx - c * ny
+        if self.rotary and ef.euler:  # J dOmega/dt on the payload, on the last angle's row
+            torque[:, -1] += self.rotary * lam_dot
         if not jacobian:
             return torque
         # dL/dTheta = diag(C n_x + S n_y) + S W diag(a) - C W diag(b), from
@@ -155,9 +181,9 @@ class DiscreteElastica(DiscreteModel):
         yt = g.P @ (c * theta_t)
         xtt = -g.P @ (s * theta_tt + c * theta_t**2)
         ytt = g.P @ (c * theta_tt - s * theta_t**2)
-        gx = fx - xtt - self.eta * xt
-        gy = fy - ytt - self.eta * yt
+        gx, gy = fx - xtt, fy - ytt
         if self.effects.coriolis:
             gx = gx + 2 * lam * yt
             gy = gy - 2 * lam * xt
-        return g.Q @ gx, g.Q @ gy
+        Qd = g.Q if g.Q_beam is None else g.Q_beam  # the payload has no damping of its own
+        return g.Q @ gx - self.eta * (Qd @ xt), g.Q @ gy - self.eta * (Qd @ yt)

@@ -51,10 +51,28 @@ class Grid:
     mid: int  #: index of the node used for y_m (or -1: interpolate)
     x0: float  #: the clamp node's share of every x: ds/2 (1 + eps_0)
     strain: np.ndarray | None = None  #: eps at nodes 0..N (extension), None: inextensible
+    #: the beam's own Q and W (no payload): what damping acts on; None: Q and W themselves
+    Q_beam: np.ndarray | None = None
+    W_beam: np.ndarray | None = None
 
     @classmethod
-    def build(cls, N: int, strain: np.ndarray | None = None) -> Grid:
-        """The grid; with `strain` (eps at nodes 0..N) the element lengths are ds (1 + eps)."""
+    def build(cls, N: int, strain: np.ndarray | None = None, tip_mass: float = 0.0) -> Grid:
+        """The grid of N intervals.
+
+        Parameters
+        ----------
+        N : int
+            Grid intervals.
+        strain : numpy.ndarray or None
+            eps at nodes 0..N: element lengths ds (1 + eps) (the extension effect).
+        tip_mass : float
+            A point mass at node N, m / (rho A L): the tension quadrature Q gains it in its last
+            column (the tip's load and inertia reach every node's tension), W = Q P with it.
+
+        Returns
+        -------
+        Grid
+        """
         N = check_N(N)
         n = N - 1
         ds = 1.0 / N
@@ -82,7 +100,13 @@ class Grid:
             P = P * (1.0 + strain[1:N])[None, :]
             P[N - 1, n - 1] = ds * (1.0 + strain[N - 1]) + ds / 2 * (1.0 + strain[N])
             K = K / (1.0 + strain[1:N])[:, None]
-        return cls(N=N, ds=ds, s=s, P=P, Q=Q, W=Q @ P, K=K, mid=mid, x0=x0, strain=strain)
+        Q_beam = W_beam = None
+        if tip_mass:
+            Q_beam, W_beam = Q, Q @ P
+            Q = Q.copy()
+            Q[:, N - 1] += tip_mass
+        return cls(N=N, ds=ds, s=s, P=P, Q=Q, W=Q @ P, K=K, mid=mid, x0=x0, strain=strain,
+                   Q_beam=Q_beam, W_beam=W_beam)  # fmt: skip
 
     def positions(self, theta: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """x, y at nodes 1..N (relative to the clamp); theta has shape (N-1,) or (N-1, m)."""

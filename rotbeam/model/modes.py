@@ -15,7 +15,13 @@ from .params import Beam, Dimensionless, Effects
 
 
 def steady_model(
-    lam: float, hub_ratio: float, N: int, softening: bool, slenderness: float | None = None
+    lam: float,
+    hub_ratio: float,
+    N: int,
+    softening: bool,
+    slenderness: float | None = None,
+    tip_mass: float = 0.0,
+    tip_inertia: float = 0.0,
 ) -> DiscreteElastica:
     """The elastica turning steadily at `lam` (no Euler load, no damping), for its modes.
 
@@ -31,6 +37,8 @@ def steady_model(
         In-plane (True) or flapwise (False) motion.
     slenderness : float or None
         h / L: the beam stretched by its centrifugal tension (`extension`), None: inextensible.
+    tip_mass, tip_inertia : float
+        A payload, m / (rho A L) and J / (rho A L^3).
 
     Returns
     -------
@@ -38,7 +46,8 @@ def steady_model(
     """
     effects = Effects(centrifugal=True, softening=softening, euler=False, coriolis=False,
                       damping=False, extension=slenderness is not None)  # fmt: skip
-    dl = Dimensionless(hub_ratio, 0.0, lam, 0.0, 1.0, effects, slenderness)
+    dl = Dimensionless(hub_ratio, 0.0, lam, 0.0, 1.0, effects, slenderness, None, tip_mass,
+                       tip_inertia)  # fmt: skip
     return DiscreteElastica(dl, N)
 
 
@@ -76,6 +85,8 @@ def dimensionless_frequencies(
     N: int = 40,
     softening: bool = False,
     slenderness: float | None = None,
+    tip_mass: float = 0.0,
+    tip_inertia: float = 0.0,
 ) -> np.ndarray:
     """Lowest `n_modes` natural frequencies w = omega T (ascending) at rotation lam = Omega T.
 
@@ -94,6 +105,8 @@ def dimensionless_frequencies(
     slenderness : float or None
         h / L: about the beam stretched by its centrifugal tension (extension); None:
         inextensible.
+    tip_mass, tip_inertia : float
+        A payload, m / (rho A L) and J / (rho A L^3).
 
     Returns
     -------
@@ -106,8 +119,8 @@ def dimensionless_frequencies(
         raise RotbeamInputError(f"hub ratio R_o/L must be >= 0, got {hub_ratio!r}")
     if not (isinstance(n_modes, int) and 1 <= n_modes <= N - 1):
         raise RotbeamInputError(f"number of modes must be in [1, N-1={N - 1}], got {n_modes!r}")
-    return linear_frequencies(steady_model(lam, hub_ratio, N, softening, slenderness), lam,
-                              n_modes)  # fmt: skip
+    model = steady_model(lam, hub_ratio, N, softening, slenderness, tip_mass, tip_inertia)
+    return linear_frequencies(model, lam, n_modes)
 
 
 def modes(
@@ -118,7 +131,7 @@ def modes(
     Parameters
     ----------
     beam : Beam
-        The beam.
+        The beam, with its payload if it has one.
     omega : float
         Angular velocity [rad/s].
     n_modes : int
@@ -133,32 +146,48 @@ def modes(
     numpy.ndarray
         Frequencies [Hz], ascending.
     """
-    w = dimensionless_frequencies(omega * beam.T, beam.hub_ratio, n_modes, N, softening)
+    mu = beam.tip_mass / (beam.rhoA * beam.L)
+    j = beam.tip_inertia / (beam.rhoA * beam.L**3)
+    w = dimensionless_frequencies(omega * beam.T, beam.hub_ratio, n_modes, N, softening, None,
+                                  mu, j)  # fmt: skip
     return w / (2.0 * math.pi * beam.T)
 
 
-def linear_forced_response(model: DiscreteModel) -> tuple[np.ndarray, np.ndarray]:
-    """Steady harmonic response of the model linearised at the mean rotation lam0.
+def linear_forced_response(model: DiscreteModel, K: int = 8) -> dict[int, np.ndarray]:
+    """Steady response of the model linearised at its mean rotation to the drive's harmonics.
+
+    lam_dot = Re sum_k d_k exp(i k omega tau) forces the linearised model with -d_k q (q the
+    Euler load per unit lam_dot): Theta_k = -(S - (k w)^2 M + i k w eta Md)^-1 d_k q.
 
     Parameters
     ----------
     model : DiscreteModel
-        The model; its scene's drive lam0 + alpha sin(omega tau) sets the forcing.
+        The model and its drive.
+    K : int
+        Highest harmonic of the drive kept.
 
     Returns
     -------
-    amplitude : numpy.ndarray
-        Complex Theta_hat, Theta(tau) = Re(Theta_hat e^{i omega tau}), shape (n,).
-    load : numpy.ndarray
-        The Euler load per unit lam_dot, shape (n,).
+    dict
+        k -> complex amplitude Theta_k (n,), Theta(tau) = Re sum_k Theta_k exp(i k omega tau).
     """
     dl = model.dl
     lam = dl.lam0 if dl.effects.centrifugal else 0.0
     mass, stiffness, q = model.linear_operators(lam)
+    damp = model.damping_rows(np.zeros((1, model.n)))
+    damped = mass if damp is None else damp[0][0]
     w = dl.omega
-    # the gyroscopic (Coriolis) matrix vanishes on the straight beam: no term here
-    A = stiffness - w * w * mass + 1j * w * model.eta * mass
-    return np.linalg.solve(A, (-dl.alpha * w * q).astype(complex)), q
+    c = dl.law.coefficients(K)
+    out = {}
+    for k in range(1, c.size):
+        if c[k] == 0:
+            continue
+        kw = k * w
+        d = (1j * kw) * c[k]  # the harmonic of lam_dot
+        # the gyroscopic (Coriolis) matrix vanishes on the straight beam: no term here
+        A = stiffness - kw * kw * mass + 1j * kw * model.eta * damped
+        out[k] = np.linalg.solve(A, -(d * q))
+    return out
 
 
 def resonance_frequency_hz(beam: Beam, omega0: float, amplitude: float = 1.0, N: int = 80) -> float:

@@ -26,14 +26,59 @@ delta x) equals lam^2 (r_o + x), which is the form the code uses (no 1/delta for
 from __future__ import annotations
 
 import math
-from dataclasses import asdict, dataclass, field, fields
+from dataclasses import asdict, dataclass, field, fields, replace
+
+import numpy as np
 
 from ..config.checks import check_finite, check_nonnegative, check_positive
 from ..config.errors import RotbeamInputError
 from ..config.parameters import check_fields, default
+from .drive import DriveLaw, HarmonicLaw, MoveLaw, SampledLaw
 
 #: Root of 1 + cos(b) cosh(b) = 0 (first cantilever mode).  The paper rounds it to 1.875.
 BETA1 = 1.8751040687119611
+
+
+def tip_loaded_root(mu: float, j: float) -> float:
+    """First root b of the cantilever's characteristic equation with a tip mass and inertia,
+
+        1 + cos b cosh b + mu b (cos b sinh b - sin b cosh b)
+          - j b^3 (sin b cosh b + cos b sinh b) + mu j b^4 (1 - cos b cosh b) = 0,
+
+    the first sign change below the bare root beta_1 (a payload lowers the first frequency),
+    then bisection.
+
+    Parameters
+    ----------
+    mu : float
+        m_tip / (rho A L), >= 0.
+    j : float
+        J_tip / (rho A L^3), >= 0.
+
+    Returns
+    -------
+    float
+        b, the first mode's frequency being b^2 sqrt(EI / (rho A L^4)).
+    """
+
+    def f(b: float) -> float:
+        c, ch, s, sh = math.cos(b), math.cosh(b), math.sin(b), math.sinh(b)
+        return (1 + c * ch + mu * b * (c * sh - s * ch) - j * b**3 * (s * ch + c * sh)
+                + mu * j * b**4 * (1 - c * ch))  # fmt: skip
+
+    grid = np.linspace(1e-6, BETA1, 2001)  # f(0) = 2 > 0: the first sign change, then bisection
+    values = np.array([f(x) for x in grid])
+    first = int(np.argmax(values <= 0.0))
+    if values[first] > 0.0:
+        raise RotbeamInputError(f"no first mode below beta_1 for mu = {mu!r}, j = {j!r}")
+    lo, hi = float(grid[first - 1]), float(grid[first])
+    for _ in range(100):
+        mid = 0.5 * (lo + hi)
+        if f(mid) > 0.0:
+            lo = mid
+        else:
+            hi = mid
+    return 0.5 * (lo + hi)
 
 
 @dataclass(frozen=True)
@@ -52,6 +97,8 @@ class Beam:
     rho: float = default("beam", "rho")  #: density [kg/m^3]
     R: float = default("beam", "R")  #: axis to undeformed tip [m]; the clamp sits at R_o = R - L
     gamma: float = default("beam", "gamma")  #: viscous damping per unit length [N s / m^2]
+    tip_mass: float = default("beam", "tip_mass")  #: point mass at the free end [kg]
+    tip_inertia: float = default("beam", "tip_inertia")  #: its rotary inertia [kg m^2]
 
     def __post_init__(self) -> None:
         check_fields(self, "beam")
@@ -96,8 +143,14 @@ class Beam:
 
     @property
     def f_n(self) -> float:
-        """First natural frequency beta_1^2 f_s of the non-rotating cantilever [Hz]."""
-        return BETA1**2 * self.f_s
+        """First natural frequency b^2 f_s of the non-rotating cantilever [Hz]: b = beta_1
+        without a payload, else the first root of the tip-loaded characteristic equation
+        (`tip_loaded_root`)."""
+        if self.tip_mass == 0.0 and self.tip_inertia == 0.0:
+            return BETA1**2 * self.f_s
+        mu = self.tip_mass / (self.rhoA * self.L)
+        j = self.tip_inertia / (self.rhoA * self.L**3)
+        return tip_loaded_root(mu, j) ** 2 * self.f_s
 
     @property
     def R_o(self) -> float:
@@ -145,21 +198,200 @@ class Beam:
 
 
 @dataclass(frozen=True)
+class Harmonic:
+    """One harmonic of a periodic drive: amplitude sin(2 pi k f_d t + phase).
+
+    Parameters
+    ----------
+    k : int
+        Harmonic number, >= 1.
+    amplitude : float
+        [rad/s], >= 0.
+    phase : float
+        [rad].
+    """
+
+    k: int
+    amplitude: float
+    phase: float = 0.0
+
+    def __post_init__(self) -> None:
+        if isinstance(self.k, bool) or not isinstance(self.k, int) or self.k < 1:
+            raise RotbeamInputError(f"drive.harmonics: k = {self.k!r}; allowed: an integer >= 1")
+        check_nonnegative("drive.harmonics amplitude", self.amplitude)
+        check_finite("drive.harmonics phase", self.phase)
+
+
+#: fewest samples of a sampled period or of a move
+MIN_SAMPLES = 8
+
+
+@dataclass(frozen=True)
+class Samples:
+    """Samples of the angular velocity: one period (x = phase in [0, 1)) or a move (x = t [s]).
+
+    Parameters
+    ----------
+    x : tuple of float
+        Phases in [0, 1) of one period, or instants [s] of a move; increasing.
+    omega : tuple of float
+        Omega at those phases or instants [rad/s].
+    kind : str
+        "profile" (one period, closed on itself) or "move".
+    source : str
+        Where the samples come from (a file name), for messages.
+    """
+
+    x: tuple[float, ...]
+    omega: tuple[float, ...]
+    kind: str = "profile"
+    source: str = ""
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "x", tuple(float(v) for v in self.x))
+        object.__setattr__(self, "omega", tuple(float(v) for v in self.omega))
+        where = f"drive.{self.kind}{f' ({self.source})' if self.source else ''}"
+        x, w = np.asarray(self.x, dtype=float), np.asarray(self.omega, dtype=float)
+        if x.shape != w.shape or x.ndim != 1:
+            raise RotbeamInputError(f"{where}: {x.size} instants but {w.size} speeds")
+        if x.size < MIN_SAMPLES:
+            raise RotbeamInputError(f"{where}: {x.size} samples; allowed: at least {MIN_SAMPLES}")
+        bad = np.flatnonzero(~(np.isfinite(x) & np.isfinite(w)))
+        if bad.size:
+            raise RotbeamInputError(
+                f"{where}: sample {bad[0]} is not a finite number (x = {x[bad[0]]!r}, "
+                f"omega = {w[bad[0]]!r})"
+            )
+        back = np.flatnonzero(np.diff(x) <= 0)
+        if back.size:
+            name = "phase" if self.kind == "profile" else "t"
+            raise RotbeamInputError(
+                f"{where}: {name} does not increase at sample {back[0] + 1} "
+                f"({x[back[0]]!r} then {x[back[0] + 1]!r}); allowed: strictly increasing"
+            )
+        if self.kind == "profile":
+            self._check_period(where, x, w)
+
+    @staticmethod
+    def _check_period(where: str, x: np.ndarray, w: np.ndarray) -> None:
+        """Phases in [0, 1) and a profile that closes on itself: the step from the last sample
+        back to the first no larger than twice the largest step inside the period."""
+        if not (x[0] >= 0.0 and x[-1] < 1.0):
+            raise RotbeamInputError(
+                f"{where}: phase from {x[0]!r} to {x[-1]!r}; allowed: phases in [0, 1) (one "
+                f"period, the sample at phase 1 is the one at 0)"
+            )
+        inside = float(np.max(np.abs(np.diff(w))))
+        seam = abs(float(w[0] - w[-1]))
+        if seam > 2.0 * inside + 1e-9 * max(1.0, float(np.max(np.abs(w)))):
+            raise RotbeamInputError(
+                f"{where}: the profile does not close on itself: it jumps by {seam:.4g} rad/s "
+                f"from its last sample back to its first, more than twice its largest step "
+                f"inside the period ({inside:.4g} rad/s)"
+            )
+
+
+@dataclass(frozen=True)
 class Drive:
-    """Harmonic angular velocity Omega(t) = Omega_0 + a sin(2 pi f_d t) [rad/s]."""
+    """How the disk turns: Omega(t) [rad/s].
+
+    A periodic drive repeats at f_d: Omega_0 + a sin(2 pi f_d t) (the paper's), a sum of
+    `harmonics` Omega_0 + sum_k a_k sin(2 pi k f_d t + phase_k), or a sampled `profile` of one
+    period.  A `move` is a single run through sampled (t, Omega), followed by `settle` seconds
+    at its last speed.
+    """
 
     omega0: float = default("drive", "omega0")  #: mean angular velocity Omega_0 [rad/s]
     amplitude: float = default("drive", "amplitude")  #: velocity amplitude a [rad/s]
-    f_d: float = default("drive", "f_d")  #: drive frequency [Hz]
+    f_d: float = default("drive", "f_d")  #: drive (repetition) frequency [Hz]
+    #: harmonics (k, a_k [rad/s], phase_k [rad]) replacing `amplitude`; () for the sine
+    harmonics: tuple[Harmonic, ...] = default("drive", "harmonics")
+    profile: Samples | None = default("drive", "profile")  #: one sampled period (phase, Omega)
+    move: Samples | None = default("drive", "move")  #: a single move (t [s], Omega)
+    settle: float | None = default("drive", "settle")  #: after a move [s]; None: until calm
 
     def __post_init__(self) -> None:
         check_fields(self, "drive")
+        object.__setattr__(self, "harmonics", tuple(self.harmonics))
+        ks = [h.k for h in self.harmonics]
+        if len(set(ks)) != len(ks):
+            raise RotbeamInputError(
+                f"drive.harmonics: k = {sorted(ks)} repeats a harmonic; allowed: distinct k"
+            )
+        given = [n for n in ("harmonics", "profile", "move") if getattr(self, n)]
+        if len(given) > 1:
+            raise RotbeamInputError(
+                f"drive: {' and '.join(given)} given together; allowed: one of harmonics, "
+                f"profile, move"
+            )
+        for name, kind in (("profile", "profile"), ("move", "move")):
+            value = getattr(self, name)
+            if value is not None and value.kind != kind:
+                raise RotbeamInputError(f"drive.{name}: samples of a {value.kind}, not a {kind}")
+        if self.settle is not None and self.move is None:
+            raise RotbeamInputError(f"drive.settle = {self.settle!r}: only a move settles")
+
+    @property
+    def kind(self) -> str:
+        """ "sine", "harmonics", "profile" or "move"."""
+        for name in ("move", "profile", "harmonics"):
+            if getattr(self, name):
+                return name
+        return "sine"
+
+    @property
+    def periodic(self) -> bool:
+        """Whether Omega repeats at f_d (everything but a move)."""
+        return self.move is None
+
+    @property
+    def terms(self) -> tuple[Harmonic, ...]:
+        """The harmonics of a harmonic drive (the sine: one, k = 1, `amplitude`)."""
+        return self.harmonics or (Harmonic(1, self.amplitude, 0.0),)
+
+    def law(self, T: float) -> DriveLaw:
+        """The drive in the model's units: lam(tau) = Omega(tau T) T.
+
+        Parameters
+        ----------
+        T : float
+            Time scale [s].
+
+        Returns
+        -------
+        DriveLaw
+        """
+        if self.move is not None:
+            t0 = self.move.x[0]
+            return MoveLaw(tuple((t - t0) / T for t in self.move.x),
+                           tuple(w * T for w in self.move.omega))  # fmt: skip
+        w = 2.0 * math.pi * self.f_d * T
+        if self.profile is not None:
+            return SampledLaw(self.profile.x, tuple(v * T for v in self.profile.omega), w)
+        terms = tuple((h.k, h.amplitude * T, h.phase) for h in self.terms)
+        return HarmonicLaw(self.omega0 * T, terms, w)
 
     def omega(self, t: float) -> float:
-        return self.omega0 + self.amplitude * math.sin(2.0 * math.pi * self.f_d * t)
+        """Omega(t) [rad/s]."""
+        return self.law(1.0).lam(t)
 
     def omega_dot(self, t: float) -> float:
-        return 2.0 * math.pi * self.f_d * self.amplitude * math.cos(2.0 * math.pi * self.f_d * t)
+        """dOmega/dt (t) [rad/s^2]."""
+        return self.law(1.0).lam_dot(t)
+
+    @property
+    def omega_max(self) -> float:
+        """The largest |Omega| [rad/s]: |Omega_0| + a for the sine."""
+        if self.kind == "sine":
+            return abs(self.omega0) + self.amplitude
+        return self.law(1.0).lam_max
+
+    @property
+    def omega_dot_max(self) -> float:
+        """The largest |dOmega/dt| [rad/s^2]: a 2 pi f_d for the sine."""
+        if self.kind == "sine":
+            return self.amplitude * 2.0 * math.pi * self.f_d
+        return self.law(1.0).lam_dot_max
 
 
 @dataclass(frozen=True)
@@ -217,20 +449,27 @@ class Dimensionless:
     """The dimensionless problem: everything the discrete model needs, nothing else.
 
     Two scenes with equal `Dimensionless` are the same numerical problem, whatever their size.
+    The drive is `law` (lam(tau) = Omega T); without one, the paper's sine
+    lam0 + alpha sin(omega tau).  For any drive lam0 is the mean rotation, alpha the largest
+    swing about it and omega 2 pi over the period.
 
-    `slenderness` h/L is a sixth group that only the `extension` effect reads: the axial
-    compliance in units of the bending one is EI / (EA L^2) = (h/L)^2 / 12 (`kappa`).
-    `from_physical` fills it only when `extension` is on (None otherwise), so scenes without
-    extension compare equal whatever their thickness, as before.
+    `slenderness` h/L is read by the `extension` effect only: the axial compliance in units of
+    the bending one is EI / (EA L^2) = (h/L)^2 / 12 (`kappa`); `from_physical` fills it only
+    with `extension` on, so that scenes without it compare equal whatever their thickness.
+    `tip_mass` and `tip_inertia` are a payload at the free end, m / (rho A L) and
+    J / (rho A L^3).
     """
 
     hub_ratio: float  #: r_o = R_o / L
     eta: float  #: damping
-    lam0: float  #: Omega_0 T
-    alpha: float  #: a T
-    omega: float  #: 2 pi f_d T
+    lam0: float  #: Omega_0 T (the period mean of lam)
+    alpha: float  #: a T (the largest |lam - lam0|)
+    omega: float  #: 2 pi f_d T (2 pi / period)
     effects: Effects = field(default_factory=Effects)
     slenderness: float | None = None  #: h / L (read by `extension` only)
+    law: DriveLaw | None = None  #: the drive; None: lam0 + alpha sin(omega tau)
+    tip_mass: float = 0.0  #: m_tip / (rho A L)
+    tip_inertia: float = 0.0  #: J_tip / (rho A L^3)
 
     def __post_init__(self) -> None:
         check_nonnegative("hub_ratio", self.hub_ratio)
@@ -238,12 +477,20 @@ class Dimensionless:
         check_finite("lam0", self.lam0)
         check_nonnegative("alpha", self.alpha)
         check_positive("omega", self.omega)
+        check_nonnegative("tip_mass", self.tip_mass)
+        check_nonnegative("tip_inertia", self.tip_inertia)
         if self.slenderness is not None:
             check_positive("slenderness", self.slenderness)
         if self.effects.extension and self.slenderness is None:
             raise RotbeamInputError(
                 "effects.extension needs the slenderness h/L (Dimensionless.slenderness)"
             )
+        law = self.law
+        if law is None:
+            law = HarmonicLaw(self.lam0, ((1, self.alpha, 0.0),), self.omega)
+        elif law.periodic and law.omega != self.omega:  # replace(dl, omega=...) moves the law
+            law = law.with_omega(self.omega)
+        object.__setattr__(self, "law", law)
 
     @property
     def kappa(self) -> float:
@@ -255,47 +502,106 @@ class Dimensionless:
 
     @property
     def lam_stretch(self) -> float:
-        """The rotation whose steady centrifugal tension stretches the beam: the period mean of
-        lam^2, lam0^2 + alpha^2 / 2, as a rate (see `rotbeam.model.elastica`, extension)."""
-        return math.sqrt(self.lam0 * self.lam0 + 0.5 * self.alpha * self.alpha)
+        """The rotation whose steady centrifugal tension stretches the beam: the root of the
+        period mean of lam^2 (lam0^2 + alpha^2 / 2 for the sine; docs/model.md, extension)."""
+        return math.sqrt(self.law.mean_square)
 
     @classmethod
     def from_physical(
         cls, beam: Beam, drive: Drive, effects: Effects | None = None
     ) -> Dimensionless:
+        """The dimensionless problem of a beam, a drive and the effects.
+
+        Parameters
+        ----------
+        beam : Beam
+            The beam (and its payload).
+        drive : Drive
+            How the disk turns.
+        effects : Effects or None
+            The loads (default: the paper's).
+
+        Returns
+        -------
+        Dimensionless
+        """
         T = beam.T
         effects = effects if effects is not None else Effects()
+        law = drive.law(T)
+        if drive.kind == "sine":
+            lam0, alpha, omega, law = (
+                drive.omega0 * T,
+                drive.amplitude * T,
+                2.0 * math.pi * drive.f_d * T,
+                None,
+            )
+        else:
+            lam0, omega = law.mean, law.omega
+            alpha = max(abs(law.lam_max - lam0), abs(lam0 - law.lam_min))
         return cls(
             hub_ratio=beam.hub_ratio,
             eta=beam.eta,
-            lam0=drive.omega0 * T,
-            alpha=drive.amplitude * T,
-            omega=2.0 * math.pi * drive.f_d * T,
+            lam0=lam0,
+            alpha=alpha,
+            omega=omega,
             effects=effects,
             slenderness=beam.h / beam.L if effects.extension else None,
+            law=law,
+            tip_mass=beam.tip_mass / (beam.rhoA * beam.L),
+            tip_inertia=beam.tip_inertia / (beam.rhoA * beam.L**3),
         )
 
     @property
     def period(self) -> float:
-        """Drive period in units of T."""
+        """Drive period in units of T (a move: its duration)."""
         return 2.0 * math.pi / self.omega
 
     def lam(self, tau: float) -> float:
-        return self.lam0 + self.alpha * math.sin(self.omega * tau)
+        """lam = Omega T at the instant tau."""
+        return self.law.lam(tau)
 
     def lam_dot(self, tau: float) -> float:
-        return self.alpha * self.omega * math.cos(self.omega * tau)
+        """d lam / d tau at the instant tau."""
+        return self.law.lam_dot(tau)
+
+    def scaled_drive(self, factor: float) -> Dimensionless:
+        """The scene with the drive's swing about its mean times `factor` (continuation)."""
+        return replace(self, law=self.law.scaled(factor), alpha=self.alpha * factor)
 
 
 def drive_groups(beam: Beam, drive: Drive) -> dict[str, float]:
-    """Maximal centrifugal and Euler numbers (Eqs. max C num, max E num) and f_d / f_n."""
+    """The largest centrifugal and Euler numbers (Eqs. max C num, max E num), E_n and f_d / f_n.
+
+    For the sine C_max = G (|Omega_0| + a)^2 and E_max = G a 2 pi f_d; for any other drive
+    C_max = G max Omega^2 and E_max = G max |dOmega/dt| over its period (or its move), and E_n
+    is E_max at f_d = f_n (NaN for a move, which has no f_d).
+
+    Parameters
+    ----------
+    beam : Beam
+        The beam (G, f_n, T).
+    drive : Drive
+        How the disk turns.
+
+    Returns
+    -------
+    dict
+        C_max, E_max, E_n, I_max (= max |Omega| T) and fd_over_fn.
+    """
     G = beam.G
+    w = drive.omega_max
+    if drive.kind == "sine":
+        e_max = G * drive.amplitude * 2.0 * math.pi * drive.f_d
+        e_n = G * drive.amplitude * 2.0 * math.pi * beam.f_n
+    else:
+        e_max = G * drive.omega_dot_max
+        e_n = e_max * beam.f_n / drive.f_d if drive.periodic else math.nan
     return {
-        "C_max": G * (drive.omega0 + drive.amplitude) ** 2,
-        "E_max": G * drive.amplitude * 2.0 * math.pi * drive.f_d,
-        "E_n": G * drive.amplitude * 2.0 * math.pi * beam.f_n,
-        "I_max": (abs(drive.omega0) + drive.amplitude) * beam.T,
-        "fd_over_fn": drive.f_d / beam.f_n,
+        "C_max": G * w**2,
+        "E_max": e_max,
+        "E_n": e_n,
+        "I_max": w * beam.T,
+        "fd_over_fn": drive.f_d / beam.f_n if drive.periodic else math.nan,
     }
 
 
@@ -308,22 +614,32 @@ FD_OVER_FN_LIMIT = 1e6
 
 
 def check_model_range(beam: Beam, drive: Drive) -> None:
-    """One-line error naming the drive (and G, f_n) when the scene is outside the model's range."""
+    """One-line error naming the drive (and G, f_n) when the scene is outside the model's range.
+
+    Parameters
+    ----------
+    beam : Beam
+        The beam.
+    drive : Drive
+        The drive.
+    """
     G = beam.G
-    w = abs(drive.omega0) + drive.amplitude
+    w = drive.omega_max
     c_max = G * w * w  # x * x: inf rather than OverflowError
-    e_max = G * drive.amplitude * 2.0 * math.pi * drive.f_d
-    ratio = drive.f_d / beam.f_n
+    e_max = G * drive.omega_dot_max
+    ratio = drive.f_d / beam.f_n if drive.periodic else 0.0
+    what = f"the {drive.kind} drive's largest speed {w:.4g} rad/s"
+    if drive.kind == "sine":
+        what = f"drive.omega0 = {drive.omega0!r}, drive.amplitude = {drive.amplitude!r}"
     if not c_max <= C_MAX_LIMIT:
         raise RotbeamInputError(
-            f"C_max = G (|Omega_0| + a)^2 = {c_max:.3g} from drive.omega0 = {drive.omega0!r}, "
-            f"drive.amplitude = {drive.amplitude!r}, G = {G:.3g} s^2 (beam); "
+            f"C_max = G max Omega^2 = {c_max:.3g} from {what}, G = {G:.3g} s^2 (beam); "
             f"allowed: C_max <= {C_MAX_LIMIT:g}"
         )
     if not e_max <= E_MAX_LIMIT:
         raise RotbeamInputError(
-            f"E_max = G a 2 pi f_d = {e_max:.3g} from drive.amplitude = {drive.amplitude!r}, "
-            f"drive.f_d = {drive.f_d!r}, G = {G:.3g} s^2 (beam); "
+            f"E_max = G max |dOmega/dt| = {e_max:.3g} from drive.amplitude = "
+            f"{drive.amplitude!r}, drive.f_d = {drive.f_d!r}, G = {G:.3g} s^2 (beam); "
             f"allowed: E_max <= {E_MAX_LIMIT:g}"
         )
     if not ratio <= FD_OVER_FN_LIMIT:

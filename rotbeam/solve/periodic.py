@@ -19,7 +19,7 @@ holds, so an unstable or wrong orbit is left behind rather than reported.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 
 import numpy as np
 import scipy.linalg as sla
@@ -68,16 +68,18 @@ class Collocation:
         if self.model.effects.coriolis:
             v = v + 2.0 * self.lam[:, None] * V
         S = self.model.velocity_matrix_rows(X, Bm)
-        st = (V, A, Mm, Bm, v, S)
+        st = (V, A, Mm, Bm, v, S, self.model.damping_rows(X))
         self._cache = (X, st)
         return st
 
     def residual(self, X: np.ndarray) -> np.ndarray:
         """X: (M, n) -> R (M, n)."""
         m = self.model
-        V, A, Mm, Bm, v, S = self._state(X)
-        a = A + m.eta * V
+        V, A, Mm, Bm, v, S, damp = self._state(X)
+        a = A + m.eta * V if damp is None else A
         R = np.einsum("jik,jk->ji", Mm, a) + np.einsum("jik,jk->ji", Bm, v) + X @ m.stiffness.T
+        if damp is not None:  # the damping's own mass matrix
+            R += m.eta * np.einsum("jik,jk->ji", damp[0], V)
         R += m.load_torque_rows(X, self.lam, self.lam_dot)
         if S is not Bm:  # a model whose squared rates carry another matrix than B
             R += np.einsum("jik,jk->ji", S - Bm, V * V)
@@ -88,18 +90,22 @@ class Collocation:
         (reusing the residual's work when X was its last argument)."""
         m = self.model
         n = m.n
-        V, A, Mm, Bm, v, _ = self._state(X)
-        a = A + m.eta * V
+        V, A, Mm, Bm, v, _, damp = self._state(X)
+        a = A + m.eta * V if damp is None else A
         Ba = np.einsum("jik,jk->ji", Bm, a)
         Mv = np.einsum("jik,jk->ji", Mm, v)
         dv = 2.0 * V
         if m.effects.coriolis:
             dv = dv + 2.0 * self.lam[:, None]
-        Cj = m.eta * Mm + Bm * dv[:, None, :]
+        Cj = m.eta * (Mm if damp is None else damp[0]) + Bm * dv[:, None, :]
         _, Lj = m.load_torque_rows(X, self.lam, self.lam_dot, jacobian=True)
         Lj += m.stiffness[None] + Bm * a[:, None, :] - Mm * v[:, None, :]
         idx = np.arange(n)
         Lj[:, idx, idx] += Mv - Ba
+        if damp is not None:  # d(eta Md V)/dTheta = eta (Bd diag(V) - diag(Bd V))
+            Bd = damp[1]
+            Lj += m.eta * (Bd * V[:, None, :])
+            Lj[:, idx, idx] -= m.eta * np.einsum("jik,jk->ji", Bd, V)
         return Lj, Cj, Mm
 
     def dense_jacobian(self, blocks) -> np.ndarray:
@@ -203,8 +209,11 @@ class _NewtonDirections:
 def linear_guess(model: DiscreteModel, tau: np.ndarray) -> np.ndarray:
     """The linearised model's harmonic response at the instants `tau`, shape (len(tau), n): the
     start of Newton without a neighbouring orbit."""
-    amp, _ = linear_forced_response(model)
-    return np.real(amp[None, :] * np.exp(1j * model.dl.omega * tau)[:, None])
+    w = model.dl.omega
+    out = np.zeros((np.size(tau), model.n))
+    for k, amp in linear_forced_response(model).items():
+        out += np.real(amp[None, :] * np.exp(1j * (k * w) * tau)[:, None])
+    return out
 
 
 def solve_periodic(
@@ -270,7 +279,7 @@ def _amplitude_continuation(model: DiscreteModel, M: int, rtol: float, steps: in
     dl = model.dl
     X = None
     for k in range(1, steps + 1):
-        scaled = model.at(replace(dl, alpha=dl.alpha * k / steps))
+        scaled = model.at(dl.scaled_drive(k / steps))
         res = solve_periodic(scaled, M, guess=X, rtol=rtol)
         if not res.converged:
             return None

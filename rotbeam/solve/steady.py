@@ -107,8 +107,10 @@ def initial_state(
             return np.concatenate([res.theta[:, 0], res.theta_t[:, 0]]), res
         start = "quasistatic"  # fall back to a physical state; the time stepping still decides
     if start == "linear":
-        amp, _ = linear_forced_response(model)
-        return np.concatenate([amp.real, -dl.omega * amp.imag]), None
+        theta, rate = np.zeros(n), np.zeros(n)  # Theta and Theta_t at tau = 0
+        for k, amp in linear_forced_response(model).items():
+            theta, rate = theta + amp.real, rate - (k * dl.omega) * amp.imag
+        return np.concatenate([theta, rate]), None
     h = dl.period * 1e-4
     th = quasistatic_series(model, np.array([-h, 0.0, h]))
     return np.concatenate([th[:, 1], (th[:, 2] - th[:, 0]) / (2 * h)]), None
@@ -132,19 +134,50 @@ def starting_state(
 def slowest_decay_rate(model: DiscreteModel) -> float:
     """Slowest decay rate of the linearised transient, per unit tau.
 
-    The damping is mass-proportional (eta M), so a mode of undamped frequency w decays as
+    With mass-proportional damping (eta M) a mode of undamped frequency w decays as
     exp(-eta tau / 2) when underdamped (w > eta / 2) and, overdamped, as exp(-r tau) with
     r = eta / 2 - sqrt(eta^2 / 4 - w^2) ~ w^2 / eta: slower.  The first mode at the lowest
-    rotation of the cycle is the slowest (stiffening only raises w).
+    rotation of the cycle is the slowest (stiffening only raises w).  A payload carries no
+    damping: eta / 2 becomes eta / 2 times the beam's share of the first mode's mass.
+
+    Parameters
+    ----------
+    model : DiscreteModel
+        The model and its drive.
+
+    Returns
+    -------
+    float
+        The rate (0 without damping).
     """
     eta, dl = model.eta, model.dl
     if eta == 0.0:
         return 0.0
     ef = model.effects
-    lam_min = max(0.0, abs(dl.lam0) - abs(dl.alpha)) if ef.centrifugal else 0.0
-    w1 = float(dimensionless_frequencies(lam_min, dl.hub_ratio, 1, model.grid.N, ef.softening)[0])
+    lam_min = dl.law.lam_min if ef.centrifugal else 0.0
+    N = model.grid.N
     half = eta / 2.0
+    if model.damping_rows(np.zeros((1, model.n))) is None:
+        w1 = float(dimensionless_frequencies(lam_min, dl.hub_ratio, 1, N, ef.softening)[0])
+    else:
+        w1, share = _first_mode_damped_share(model, lam_min)
+        half = half * share
     return half - math.sqrt(half * half - w1 * w1) if w1 < half else half
+
+
+def _first_mode_damped_share(model: DiscreteModel, lam: float) -> tuple[float, float]:
+    """First frequency w1 at `lam`, and the share of the first mode's mass that is damped:
+    psi' Md phi / psi' M phi with phi, psi its right and left eigenvectors (the first-order
+    change of its decay rate with the damping's mass matrix, exact for Md = M)."""
+    import scipy.linalg as sla
+
+    mass, stiffness, _ = model.linear_operators(lam)
+    damped = model.damping_rows(np.zeros((1, model.n)))[0][0]
+    w2, left, right = sla.eig(stiffness, mass, left=True, right=True)
+    k = int(np.argmin(np.real(w2)))
+    phi, psi = right[:, k], left[:, k].conj()
+    share = float(np.real((psi @ damped @ phi) / (psi @ mass @ phi)))
+    return math.sqrt(max(float(np.real(w2[k])), 0.0)), share
 
 
 def collocation_window(
@@ -309,7 +342,7 @@ def tolerances(
         orbit = float(np.max(np.abs(periodic.theta)))
         scale = min(scale, orbit) if orbit > 0.0 and math.isfinite(orbit) else scale
     if not scale or not math.isfinite(scale):
-        scale = abs(dl.alpha * dl.omega) * (dl.hub_ratio + 1.0) / 8.0 or 1.0
+        scale = dl.law.lam_dot_max * (dl.hub_ratio + 1.0) / 8.0 or 1.0
     wref = max(dl.omega, 1.0)
     rho = math.exp(-slowest_decay_rate(model) * dl.period)
     rtol = min(num.rtol, 0.1 * num.ss_tol * (1.0 - rho)) if rho < 1.0 else num.rtol
