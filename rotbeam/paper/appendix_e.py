@@ -16,10 +16,26 @@ def systems_table(
 ) -> list[dict[str, Any]]:
     """Table (systems) of App. E: zeta, k and the printed "f_n" of three systems.
 
-    The cantilever row is evaluated for `beam` (default: reference beam).  The mass-spring row
-    needs {"k_s", "m", "gamma"} and the pendulum row {"m", "g", "L", "gamma"}; without them
-    their values are NaN (the reference beam does not define them).  The table's "f_n" column is
-    an angular frequency [rad/s] (no 1/(2 pi)); `f_n_hz` divides it by 2 pi.
+    The cantilever row is evaluated for `beam`; the mass-spring and pendulum rows only when their
+    values are given (the reference beam does not define them), NaN otherwise.  The table's "f_n"
+    column is an angular frequency [rad/s] (no 1/(2 pi)); ``f_n_hz`` divides it by 2 pi.
+
+    Parameters
+    ----------
+    beam : Beam or None
+        The cantilever (SI); None: the reference beam.
+    mass_spring : dict or None
+        ``k_s`` [N/m], ``m`` [kg] and ``gamma`` [N s/m].
+    pendulum : dict or None
+        ``m`` [kg], ``g`` [m/s^2], ``L`` [m] and ``gamma`` [N m s].
+
+    Returns
+    -------
+    list of dict
+        One row per system (mass-spring, pendulum, cantilever beam): ``system``; the formulas
+        ``zeta_formula``, ``k_formula`` and ``f_n_formula``; ``zeta`` (dimensionless); ``k``
+        (N/m for the mass-spring and the beam, N m for the pendulum); ``f_n_table`` [rad/s];
+        ``f_n_unit`` (that unit in words) and ``f_n_hz`` [Hz].
     """
     beam = beam if beam is not None else Beam()
     nan = float("nan")

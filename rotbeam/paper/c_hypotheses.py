@@ -1,37 +1,9 @@
-r"""Candidate mechanisms for the paper's critical-frequency constant c (docs/c_hypotheses.md).
+"""Candidate mechanisms for the paper's critical-frequency constant c, run through our model.
 
-Ours: c = f_d*/f_0 = 0.229, 0.271, 0.323, 0.354 for Delta RMS thresholds 0.05, 0.07, 0.10, 0.12;
-the paper: 0.311, 0.345, 0.385, 0.404 (+- 0.001).  Each named hypothesis changes one thing in how
-RMS_dyn, RMS_QS, Delta RMS or f_0 are obtained (what the paper's pipeline might have done), and
-`c_for_hypothesis` returns the c it gives for every threshold at once.  `grid_c` then applies the
-paper's first-grid-point rule on a coarse scan to the same lines, and `study_table` writes the
-long table (hypothesis, threshold, c, c_err) the workflow rule `c_hypotheses` produces.
-
-A hypothesis is a set of options (`Hypothesis`):
-
-* ``model``: the dynamic model, ours or `rotbeam.paper.printed_model.PrintedElastica` with
-  printed misprints (dynamic only: the paper's quasi-static answer came from bvp4c).
-* ``qs``: quasi-static response from the same discrete model ("discrete") or from the continuum
-  ("continuum": Richardson limit of the discrete static problem on N = 80 and 160, which agrees
-  with `rotbeam.solve.static_bvp.solve_static_bvp` to 1e-5 relative; tested).
-* ``s_dyn``/``N_dyn``: where and on which grid the dynamic y_m is read (QS always at s = 1/2;
-  s_dyn None: node N/2 counted from the clamp as node 1, s = (N/2 - 1)/N).
-* ``measure``: "y" (rotating frame), "lab" (the drive's rigid oscillation added: a frame turning
-  uniformly at Omega_0), "chord" (deflection normal to the clamp-tip chord).
-* ``dynamics``: "periodic" (the steady orbit by collocation), "steps" / "steps_rest" (RMS over
-  the integrator's own output steps, from the orbit or from rest) or "rest" (time stepping from
-  rest) with ``window`` (("periods", 10), ("seconds", 5.0), or ("last", 1): the last period of a
-  run of ``t_end_tau``) and ``method``/``rtol``/``atol`` (e.g. TR-BDF2 at MATLAB's 1e-3 / 1e-6).
-* ``f0``: "linear_max" (ours: linearised in-plane frequency at Omega_0 + a), "linear_mean"
-  (at Omega_0), "southwell_flap" / "southwell_inplane" (Eq. Southwell with S_1 flapwise /
-  in-plane), "fn_printed" (ours shifted to f_n = 6.37 Hz), "peak" (peak of the dynamic RMS scan).
-* ``zeta``: damping ratio (None: the beam's gamma, zeta = 0.0203).
-* ``denominator``: "dyn" (Eq. Delta_RMS) or "qs"; ``mean``: "keep" or "remove"; ``qs_scale``:
-  RMS_QS multiplied by this (the size of bias that would explain the paper, for calibration).
-* ``coriolis_ny``: the printed +2 I y_t of the n_y integrand with Coriolis on; for small angles
-  an extra damping 2 lam W Theta_t, modelled as eta -> eta + 2 lam0.
-
-Only public functions of rotbeam are used; everything here is downstream of the model.
+Each named `Hypothesis` changes one thing in how RMS_dyn, RMS_QS, Delta RMS or f_0 are obtained;
+`c_for_hypothesis` gives the c of f_d* = c f_0 it yields at every Delta RMS threshold, `grid_c`
+the same under the paper's first-grid-point rule, and `study_table` the long table of the
+workflow rule ``c_hypotheses``.  The options, the method and the verdict: docs/c_hypotheses.md.
 """
 
 from __future__ import annotations
@@ -53,7 +25,7 @@ from ..model.surrogate import southwell_frequency_hz
 from .c_response import dynamic_response, hypothesis_quasistatic_midspan, midspan_measure
 from .printed import printed_per_threshold, read_claims
 
-THRESHOLDS = (0.05, 0.07, 0.10, 0.12)
+THRESHOLDS = (0.05, 0.07, 0.10, 0.12)  #: the Delta RMS thresholds of App. D
 _CLAIMS = read_claims()[1]
 PAPER_C = printed_per_threshold(_CLAIMS, "c_")  #: App. D: threshold -> printed c
 PAPER_C_ERR = float(_CLAIMS.loc[_CLAIMS["id"] == "c_0.10", "tolerance"].iloc[0])  #: its +-
@@ -63,8 +35,61 @@ QS_SCALE = "qs_scale_"  #: prefix of the calibration hypotheses, e.g. qs_scale_1
 
 @dataclass(frozen=True)
 class Hypothesis:
+    """One candidate mechanism: options that say how RMS_dyn, RMS_QS, Delta RMS and f_0 are made.
+
+    The defaults are ours; a hypothesis changes one or two of them.  What each option stands
+    for in the paper's pipeline: docs/c_hypotheses.md ("What a hypothesis can change").
+
+    Attributes
+    ----------
+    description : str
+        The hypothesis in words (the study table's description column).
+    model : tuple of str
+        Printed misprints of the dynamic model (`rotbeam.paper.printed_model.MISPRINTS`);
+        empty: ours.
+    qs : str
+        Quasi-static answer: "discrete" (the model on grid N) or "continuum" (Richardson limit
+        of the static problem on N = 80 and 160).
+    s_dyn : float or None
+        Arclength, as a fraction of L, where the dynamic y_m is read (the quasi-static y_m is
+        read at 1/2); None: node N/2 counted from the clamp as node 1, s = (N/2 - 1)/N.
+    N_dyn : int or None
+        Grid intervals of the dynamic model (None: those of the quasi-static answer).
+    measure : str
+        "y" (rotating frame), "lab" (frame turning uniformly at Omega_0) or "chord"
+        (deflection normal to the clamp-tip chord).
+    dynamics : str
+        "periodic" (collocated orbit), "steps" / "steps_rest" (the integrator's own output
+        steps, from the orbit or from rest) or "rest" (time stepping from rest).
+    window : tuple
+        Runs from rest: ("periods", k), ("seconds", t) or ("last", k).
+    t_end_tau : float
+        Runs from rest: the least run length, dimensionless (units of T).
+    method : str
+        `scipy.integrate.solve_ivp` method of time-stepped runs, or "TRBDF2".
+    rtol, atol : float
+        Its tolerances.
+    f0 : str
+        Definition of f_0: "linear_max", "linear_mean", "southwell_flap",
+        "southwell_inplane", "fn_printed" or "peak" (`f0_for`).
+    zeta : float or None
+        Damping ratio (dimensionless) the beam's gamma is scaled to; None: the beam's own.
+    denominator : str
+        "dyn" (Eq. Delta_RMS) or "qs" (RMS_QS in the denominator).
+    mean : str
+        "keep" or "remove" (the mean of y_m removed before the RMS).
+    qs_scale : float
+        Factor (dimensionless) on RMS_QS: the calibration.
+    coriolis_ny : bool
+        Coriolis on with the printed +2 I y_t of n_y, modelled as eta -> eta + 2 lam0.
+    N : int or None
+        Grid intervals (None: the scan's N).
+    step_periods : int
+        Dynamics "steps": periods stepped from the orbit (the last 2 sampled).
+    """
+
     description: str = "ours: collocated orbit N, quasi-static on the same grid, y at s = 1/2"
-    model: tuple[str, ...] = ()  #: printed misprints of the dynamic model (elastica_printed)
+    model: tuple[str, ...] = ()  #: printed misprints of the dynamic model (PrintedElastica)
     qs: str = "discrete"
     s_dyn: float = 0.5
     N_dyn: int | None = None
@@ -204,7 +229,24 @@ HYPOTHESES: dict[str, Hypothesis] = {
 
 
 def hypothesis(name: str | Hypothesis) -> Hypothesis:
-    """The named hypothesis; ``qs_scale_<k>`` is the calibration RMS_QS x k."""
+    """The hypothesis a name stands for.
+
+    Parameters
+    ----------
+    name : str or Hypothesis
+        A key of `HYPOTHESES`, or ``qs_scale_<k>`` (the calibration: RMS_QS multiplied by a
+        number k > 0, e.g. ``qs_scale_1.05``); a `Hypothesis` is returned as it is.
+
+    Returns
+    -------
+    Hypothesis
+        The registered (or calibration) hypothesis.
+
+    Raises
+    ------
+    RotbeamInputError
+        For an unknown name, or a ``qs_scale_<k>`` whose k is not a number > 0.
+    """
     if isinstance(name, Hypothesis):
         return name
     if name.startswith(QS_SCALE):
@@ -224,8 +266,31 @@ def hypothesis(name: str | Hypothesis) -> Hypothesis:
 
 @dataclass(frozen=True)
 class ScanSpec:
-    """The lines a hypothesis is run on: f_d = f_0 linspace(lo, hi, points) (f_0 ours) at the
-    Omega_0 of each C_max, grid N, `samples` per period, velocity amplitude a."""
+    """The lines a hypothesis is run on, and how each is scanned.
+
+    A line is the Omega_0 of one C_max (`omega0_for_cmax`), scanned at
+    f_d = f_0 linspace(lo, hi, points) with f_0 ours (linear, at Omega_0 + a).
+
+    Attributes
+    ----------
+    c_max : tuple of float
+        The lines' maximal centrifugal numbers C_max (dimensionless, > 0; at least one).
+    N : int
+        Grid intervals, 4 to 2000.
+    lo, hi : float
+        The scan's ends as fractions of f_0 (dimensionless), 0 < lo < hi <= 3.
+    points : int
+        Scan points per line, 3 to 1000.
+    samples : int
+        Samples per drive period, 8 to 4096.
+    amplitude : float
+        Drive amplitude a [rad/s], > 0.
+
+    Raises
+    ------
+    RotbeamInputError
+        When a field is outside its range.
+    """
 
     c_max: tuple[float, ...] = (1.0,)
     N: int = 40
@@ -254,9 +319,24 @@ class ScanSpec:
 
 @dataclass(frozen=True)
 class GridRule:
-    """The paper's first-grid-point rule on a coarse scan: f_d* is the first point of the scan
-    f_d = k step (unit "Hz") or f_d = k step f_0 (unit "f0", f_0 ours), k = 1, 2, ..., at or
-    above the line's Delta RMS root."""
+    """The paper's first-grid-point rule on a coarse scan.
+
+    f_d* is the first point of the scan f_d = k step (unit "Hz") or f_d = k step f_0 (unit
+    "f0", f_0 ours), k = 1, 2, ..., at or above the line's Delta RMS root.  It needs no new
+    simulation: `grid_c` applies it to the roots of a `c_for_hypothesis` result.
+
+    Attributes
+    ----------
+    step : float
+        The scan's step, > 0: in Hz for unit "Hz", a fraction of f_0 (dimensionless) for "f0".
+    unit : str
+        "Hz" or "f0".
+
+    Raises
+    ------
+    RotbeamInputError
+        For a step that is not > 0 or another unit.
+    """
 
     step: float
     unit: str = "Hz"
@@ -268,10 +348,24 @@ class GridRule:
 
     @property
     def label(self) -> str:
+        """The rule's name in the study table, e.g. ``grid_0.5Hz`` or ``grid_0.05f0``."""
         return f"grid_{self.step:g}{self.unit}"
 
     def point_above(self, root_hz: float, f_ref: float) -> float:
-        """The first grid point >= root_hz."""
+        """The first grid point at or above a root.
+
+        Parameters
+        ----------
+        root_hz : float
+            The line's Delta RMS root f_d* [Hz].
+        f_ref : float
+            The line's f_0, ours [Hz]: the step of unit "f0" is `step` f_ref.
+
+        Returns
+        -------
+        float
+            The grid point [Hz]; a root less than 1e-9 steps above a grid point counts as on it.
+        """
         h = self.step if self.unit == "Hz" else self.step * f_ref
         return math.ceil(root_hz / h - 1e-9) * h
 
@@ -297,8 +391,38 @@ def scene_delta(
     scan: ScanSpec = ScanSpec(),
     state: dict | None = None,
 ) -> dict:
-    """RMS_dyn, RMS_QS and Delta RMS of one scene under hypothesis h (`state` carries the orbit
-    from one f_d to the next along a line)."""
+    """RMS_dyn, RMS_QS and Delta RMS of one scene under one hypothesis.
+
+    Parameters
+    ----------
+    h : Hypothesis or str
+        The hypothesis, or its name (`hypothesis`).
+    beam : Beam
+        The beam (SI); its gamma is rescaled when the hypothesis sets ``zeta``.
+    omega0 : float
+        Mean rotation rate Omega_0 [rad/s].
+    f_d : float
+        Drive frequency [Hz].
+    scan : ScanSpec
+        Grid N, samples per period and drive amplitude a.
+    state : dict or None
+        Carries the orbit from one f_d to the next along a line (updated in place); None: a
+        fresh start.
+
+    Returns
+    -------
+    dict
+        ``rms_dynamic`` and ``rms_quasistatic`` (RMS of y_m in units of L, dimensionless; the
+        latter times ``qs_scale``), ``delta_rms`` (dimensionless), ``f_d`` [Hz], ``omega0``
+        [rad/s] and ``samples`` (the number of dynamic samples).
+
+    Raises
+    ------
+    RotbeamInputError
+        For an unknown hypothesis name.
+    RuntimeError
+        When no periodic orbit is found or time stepping fails.
+    """
     h = hypothesis(h)
     state = {} if state is None else state
     beam = _beam_for(beam, h)
@@ -329,7 +453,32 @@ def _peak_frequency_hz(beam: Beam, omega0: float, scan: ScanSpec) -> float:
 
 
 def f0_for(h: Hypothesis, beam: Beam, omega0: float, scan: ScanSpec = ScanSpec()) -> float:
-    """f_0 [Hz] on one line as the hypothesis defines it."""
+    """f_0 of one line as the hypothesis defines it.
+
+    Parameters
+    ----------
+    h : Hypothesis
+        Its ``f0`` names the definition: "linear_max" (ours: linearised in-plane frequency at
+        Omega_0 + a), "linear_mean" (at Omega_0), "southwell_flap" / "southwell_inplane"
+        (Eq. Southwell at Omega_0 + a), "fn_printed" (ours shifted to f_n = 6.37 Hz) or "peak"
+        (peak of our dynamic RMS scan).
+    beam : Beam
+        The beam (SI).
+    omega0 : float
+        Mean rotation rate Omega_0 [rad/s].
+    scan : ScanSpec
+        Drive amplitude a, and for "peak" the grid and samples of the scan.
+
+    Returns
+    -------
+    float
+        f_0 [Hz].
+
+    Raises
+    ------
+    RotbeamInputError
+        For an unknown ``f0``.
+    """
     a = scan.amplitude
     if h.f0 == "linear_max":
         return resonance_frequency_hz(beam, omega0, a)
@@ -346,7 +495,31 @@ def f0_for(h: Hypothesis, beam: Beam, omega0: float, scan: ScanSpec = ScanSpec()
 
 
 def line_scan(h: Hypothesis | str, beam: Beam, c_max: float, scan: ScanSpec = ScanSpec()) -> dict:
-    """Delta RMS on f_d = f_0 linspace(lo, hi, points) (f_0 ours) at Omega_0 for C_max."""
+    """Delta RMS along one line: f_d = f_0 linspace(lo, hi, points), f_0 ours, at C_max's Omega_0.
+
+    Parameters
+    ----------
+    h : Hypothesis or str
+        The hypothesis, or its name.
+    beam : Beam
+        The beam (SI).
+    c_max : float
+        The line's maximal centrifugal number C_max (dimensionless, > 0).
+    scan : ScanSpec
+        The scan and its numerics.
+
+    Returns
+    -------
+    dict
+        ``c_max``; ``omega0`` [rad/s]; ``f_ref``, f_0 ours [Hz], which sets the scan; ``f_d``
+        [Hz], ``delta``, ``rms_dynamic`` and ``rms_quasistatic`` (arrays, one entry per f_d);
+        ``f0`` [Hz], f_0 as the hypothesis defines it.
+
+    Raises
+    ------
+    RotbeamInputError
+        For an unknown hypothesis or a C_max that is not > 0.
+    """
     h = hypothesis(h)
     omega0 = omega0_for_cmax(beam, c_max, scan.amplitude)
     f_ref = resonance_frequency_hz(beam, omega0, scan.amplitude)
@@ -362,8 +535,24 @@ def line_scan(h: Hypothesis | str, beam: Beam, c_max: float, scan: ScanSpec = Sc
 
 # --- c over the lines ------------------------------------------------------------------------
 def slope_fit(f0: Sequence[float], fd: Sequence[float]) -> tuple[float, float]:
-    """Least-squares slope c of fd = c f0 through the origin and its standard error (as
-    `boundary.fit_c`; NaN error with fewer than 2 lines, NaN c with none)."""
+    """Least-squares slope c of fd = c f0 through the origin, and its standard error.
+
+    The fit of `rotbeam.analysis.boundary.fit_c`, on plain sequences.
+
+    Parameters
+    ----------
+    f0 : sequence of float
+        f_0 of each line [Hz].
+    fd : sequence of float
+        f_d* of each line [Hz].
+
+    Returns
+    -------
+    c : float
+        The slope (dimensionless); NaN with no line.
+    c_err : float
+        Its standard error; NaN with fewer than 2 lines.
+    """
     f0, fd = np.asarray(f0, float), np.asarray(fd, float)
     if f0.size == 0:
         return math.nan, math.nan
@@ -375,7 +564,24 @@ def slope_fit(f0: Sequence[float], fd: Sequence[float]) -> tuple[float, float]:
 
 
 def line_roots(lines: Sequence[dict], threshold: float, lo: float) -> tuple[list[dict], list[str]]:
-    """The PCHIP root f_d* of each line for one threshold (lines without one give a note)."""
+    """The PCHIP root f_d* of each line at one threshold.
+
+    Parameters
+    ----------
+    lines : sequence of dict
+        `line_scan` results.
+    threshold : float
+        Delta RMS threshold (dimensionless).
+    lo : float
+        The scan's lower end as a fraction of f_0, quoted in the notes.
+
+    Returns
+    -------
+    roots : list of dict
+        One per line with a root: ``c_max``, ``root`` (f_d* [Hz]), ``f0`` and ``f_ref`` [Hz].
+    notes : list of str
+        One per line without a root: why, and Delta RMS at the first scanned point.
+    """
     roots, notes = [], []
     for ln in lines:
         cr = critical_from_scan(ln["f_d"], ln["delta"], threshold)
@@ -394,12 +600,36 @@ def c_for_hypothesis(
     scan: ScanSpec = ScanSpec(),
     thresholds: Iterable[float] = THRESHOLDS,
 ) -> dict:
-    """c = f_d*/f_0 per threshold for a named hypothesis: f_d* the PCHIP root of Delta RMS on
-    each line, c the least-squares slope of f_d* = c f_0 over the lines.
+    """c = f_d*/f_0 at every threshold for one hypothesis.
 
-    Returns {"c", "c_err", "per_line": {threshold: [c per line]}, "roots": {threshold: [...]},
-    "notes", "lines"}; a threshold not reached from below on a line (Delta RMS already above it at
-    the lowest scanned f_d, or never reached) drops that line, with a note (NaN c with no line).
+    On each line of `scan`, f_d* is the PCHIP root of Delta RMS; c is the least-squares slope
+    of f_d* = c f_0 over the lines (`slope_fit`), f_0 as the hypothesis defines it.  A threshold
+    not reached from below on a line (Delta RMS already above it at the lowest scanned f_d, or
+    never reached) drops that line, with a note.
+
+    Parameters
+    ----------
+    name : str or Hypothesis
+        The hypothesis, or its name (`hypothesis`).
+    beam : Beam or None
+        The beam (SI); None: the reference beam.
+    scan : ScanSpec
+        The lines and their scan.
+    thresholds : iterable of float
+        Delta RMS thresholds, each in (0, 1).
+
+    Returns
+    -------
+    dict
+        ``name`` and ``description``; ``c`` and ``c_err``, {threshold: float} (NaN c with no
+        line); ``per_line``, {threshold: [f_d*/f_0 of each line, NaN where dropped]};
+        ``roots``, {threshold: the roots of `line_roots`}; ``notes``, a list of str; ``lines``,
+        the `line_scan` results.
+
+    Raises
+    ------
+    RotbeamInputError
+        For an unknown hypothesis or a threshold outside (0, 1).
     """
     beam = beam or Beam()
     h = hypothesis(name)
@@ -420,11 +650,23 @@ def c_for_hypothesis(
 
 
 def grid_c(result: dict, rule: GridRule) -> dict[float, tuple[float, float]]:
-    """{threshold: (c, c_err)} of a `c_for_hypothesis` result under the first-grid-point rule.
+    """c of a `c_for_hypothesis` result under the first-grid-point rule (no new simulation).
 
     The first grid point at or above the PCHIP root is the first with Delta RMS >= threshold on
     the interpolant (PCHIP does not overshoot its data, and every scanned point below the root's
     bracket is below the threshold); grid points below the scan's lo are taken as below it too.
+
+    Parameters
+    ----------
+    result : dict
+        A `c_for_hypothesis` result (its ``roots`` are read).
+    rule : GridRule
+        The coarse scan.
+
+    Returns
+    -------
+    dict
+        {threshold: (c, c_err)}, as `slope_fit` gives them.
     """
     out = {}
     for th, roots in result["roots"].items():
@@ -458,9 +700,40 @@ def study_table(
     grid_hypotheses: Sequence[str] = (),
     log: Callable[[str], None] = lambda msg: None,
 ) -> pd.DataFrame:
-    """Long table (hypothesis, threshold, c, c_err, c_paper, lines_used, description) of every
-    named hypothesis, and of each of `grid_hypotheses` under each grid rule (named
-    "<hypothesis>+grid_<step><unit>").  lines_used: the lines with a root at that threshold."""
+    """The c study's long table: every named hypothesis, and some under each grid rule.
+
+    Every name is checked before the first simulation, and a hypothesis named in both `names`
+    and `grid_hypotheses` runs once.
+
+    Parameters
+    ----------
+    names : sequence of str
+        Hypotheses tabled with c from the PCHIP root.
+    beam : Beam
+        The beam (SI).
+    scan : ScanSpec
+        The lines and their scan.
+    thresholds : iterable of float
+        Delta RMS thresholds, each in (0, 1).
+    grid_rules : sequence of GridRule
+        Coarse scans for the first-grid-point rule.
+    grid_hypotheses : sequence of str
+        Hypotheses also tabled under each of `grid_rules`, as "<hypothesis>+grid_<step><unit>".
+    log : callable
+        Receives one line per hypothesis: its c and notes.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per (hypothesis, threshold): hypothesis, threshold, c, c_err, c_paper (the
+        printed c; NaN at a threshold the paper does not print), lines_used (the lines with a
+        root at that threshold), description.
+
+    Raises
+    ------
+    RotbeamInputError
+        For an unknown hypothesis name or a threshold outside (0, 1).
+    """
     thresholds = [check_threshold(t) for t in thresholds]
     todo = list(dict.fromkeys([*names, *grid_hypotheses]))
     for name in todo:
@@ -484,8 +757,21 @@ def study_table(
 
 @dataclass(frozen=True)
 class Study:
-    """The workflow's study: hypotheses on the lines of `scan`, and `grid_hypotheses` under each
-    of `grid_rules` (config section ``c_hypotheses``)."""
+    """The workflow's c study (config section ``c_hypotheses``), ready to run on a beam.
+
+    Attributes
+    ----------
+    hypotheses : tuple of str
+        Hypotheses tabled with c from the PCHIP root.
+    scan : ScanSpec
+        The lines and their scan.
+    thresholds : tuple of float
+        Delta RMS thresholds.
+    grid_rules : tuple of GridRule
+        Coarse scans for the first-grid-point rule.
+    grid_hypotheses : tuple of str
+        Hypotheses also tabled under each of `grid_rules`.
+    """
 
     hypotheses: tuple[str, ...]
     scan: ScanSpec = ScanSpec()
@@ -494,10 +780,25 @@ class Study:
     grid_hypotheses: tuple[str, ...] = ()
 
     def run(self, beam: Beam, log: Callable[[str], None] = lambda msg: None) -> pd.DataFrame:
+        """The study's table for one beam (`study_table`).
+
+        Parameters
+        ----------
+        beam : Beam
+            The beam (SI).
+        log : callable
+            Receives one line per hypothesis.
+
+        Returns
+        -------
+        pandas.DataFrame
+            The long table of `study_table`.
+        """
         return study_table(self.hypotheses, beam, self.scan, self.thresholds, self.grid_rules,
                            self.grid_hypotheses, log)  # fmt: skip
 
     def describe(self) -> str:
+        """The setup in one line (lines, N, scan, samples, amplitude), for the study's Markdown."""
         s = self.scan
         lines = ", ".join(f"{c:g}" for c in s.c_max)
         return (f"C_max = {lines}; N = {s.N}; f_d = f_0 linspace({s.lo:g}, {s.hi:g}, {s.points}),"
@@ -505,7 +806,27 @@ class Study:
 
 
 def study_from_config(section: dict, amplitude: float = 1.0) -> Study:
-    """A `Study` from the workflow config's ``c_hypotheses`` section (and its amplitude)."""
+    """The `Study` of the workflow config's ``c_hypotheses`` section.
+
+    Parameters
+    ----------
+    section : dict
+        The section: ``hypotheses``, ``c_max``, ``N``, ``lo``, ``hi``, ``points``, and
+        optionally ``samples`` (default 32), ``thresholds`` (default `THRESHOLDS`) and ``grid``
+        (``step_hz``, ``step_f0``, ``hypotheses``).
+    amplitude : float
+        Drive amplitude a [rad/s] (the config's ``amplitude``).
+
+    Returns
+    -------
+    Study
+        The study; its hypothesis names are checked when it runs.
+
+    Raises
+    ------
+    RotbeamInputError
+        When a value of the scan or a grid step is outside its range.
+    """
     scan = ScanSpec(c_max=tuple(section["c_max"]), N=int(section["N"]), lo=section["lo"],
                     hi=section["hi"], points=int(section["points"]),
                     samples=int(section.get("samples", 32)), amplitude=amplitude)  # fmt: skip

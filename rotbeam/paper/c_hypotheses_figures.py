@@ -14,8 +14,20 @@ from .c_hypotheses import PAPER_C, PAPER_C_ERR
 
 
 def wide_table(table: pd.DataFrame) -> pd.DataFrame:
-    """One row per hypothesis: c at each threshold, the largest |c - c_paper| and the share of
-    ours-to-paper gap closed (mean over thresholds; ours = the 'ours' row when present)."""
+    """The study's table, one row per hypothesis, for reading.
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        The long table of `rotbeam.paper.c_hypotheses.study_table`.
+
+    Returns
+    -------
+    pandas.DataFrame
+        Per hypothesis: c at each threshold (columns "c(<threshold>)"), the largest
+        |c - c_paper| over the thresholds and, when the table has an "ours" row, "gap closed":
+        (c - c_ours) / (c_paper - c_ours), the mean over thresholds (0: ours, 1: the paper).
+    """
     wide = table.pivot_table(index="hypothesis", columns="threshold", values="c", sort=False)
     wide.columns = [f"c({t:g})" for t in wide.columns]
     paper = table.groupby("threshold", sort=False)["c_paper"].first()
@@ -31,7 +43,21 @@ def wide_table(table: pd.DataFrame) -> pd.DataFrame:
 
 
 def verdict(table: pd.DataFrame, tol: float = PAPER_C_ERR) -> str:
-    """Which hypotheses give every threshold within tol of the paper, and the closest one."""
+    """The study's verdict in words: the hypotheses that meet the paper, and the closest one.
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        The long table of `rotbeam.paper.c_hypotheses.study_table`.
+    tol : float
+        Largest |c - c_paper| (dimensionless) at every threshold; default the printed +-.
+
+    Returns
+    -------
+    str
+        One or two sentences: the hypotheses within `tol` at every threshold (or that none
+        is), and the one with the smallest largest miss.
+    """
     d = table.assign(d=(table["c"] - table["c_paper"]).abs())
     worst = d.groupby("hypothesis", sort=False)["d"].max()
     hits = [h for h, v in worst.items() if v <= tol + 1e-12]
@@ -47,7 +73,20 @@ def verdict(table: pd.DataFrame, tol: float = PAPER_C_ERR) -> str:
 
 
 def c_hypotheses_markdown(table: pd.DataFrame, setup: str) -> str:
-    """The study's Markdown: setup, verdict, the wide table, the hypotheses in words."""
+    """The study's Markdown: setup, verdict, the wide table and the hypotheses in words.
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        The long table of `rotbeam.paper.c_hypotheses.study_table`.
+    setup : str
+        The setup in one line (`Study.describe`).
+
+    Returns
+    -------
+    str
+        The Markdown document.
+    """
     names = table.drop_duplicates("hypothesis")[["hypothesis", "description"]]
     paper = ", ".join(f"{PAPER_C[t]:.3f}" for t in sorted(PAPER_C))
     return (
@@ -62,7 +101,17 @@ def c_hypotheses_markdown(table: pd.DataFrame, setup: str) -> str:
 
 
 def c_hypotheses_figure(table: pd.DataFrame, pdf: str, png: str) -> None:
-    """c against the threshold per hypothesis, the paper's values with their +-0.001."""
+    """The figure of c against the Delta RMS threshold per hypothesis, beside the paper's c.
+
+    Hypotheses under a grid rule are drawn dashed; the paper's values carry their printed +-.
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        The long table of `rotbeam.paper.c_hypotheses.study_table`.
+    pdf, png : str
+        Paths the figure is written to.
+    """
     fig, ax = figure(width=9.0, height=4.6)
     names = list(dict.fromkeys(table["hypothesis"]))
     colors = plt.get_cmap("tab20")(np.linspace(0, 1, max(len(names), 2)))

@@ -1,9 +1,9 @@
-"""What one hypothesis of `rotbeam.paper.c_hypotheses` measures in one scene: the dynamic
-Theta (collocated orbit, integrator steps or a run from rest, of our model or a printed-appendix
-variant), the quasi-static Theta (same grid or continuum) and y_m read off either of them.
+"""What one hypothesis of `rotbeam.paper.c_hypotheses` measures in one scene.
 
-Every function here is a named step of `c_hypotheses.scene_delta`; the options come from a
-`Hypothesis` (any object with its attributes).
+The dynamic Theta (collocated orbit, integrator steps or a run from rest, of our model or a
+printed-appendix variant), the quasi-static Theta (same grid or continuum) and y_m read off
+either of them.  Every function here is a named step of `c_hypotheses.scene_delta`; the options
+come from a `Hypothesis` (any object with its attributes).  Each step: docs/c_hypotheses.md.
 """
 
 from __future__ import annotations
@@ -28,7 +28,7 @@ from ..solve.steady import steady_state
 from ..solve.system import FirstOrderSystem
 from .printed_model import PrintedElastica
 
-MEASURES = ("y", "lab", "chord")
+MEASURES = ("y", "lab", "chord")  #: the ways of reading y_m (`midspan_measure`)
 
 
 def midspan_measure(
@@ -39,8 +39,36 @@ def midspan_measure(
     dl: Dimensionless | None = None,
     tau: np.ndarray | None = None,
 ) -> np.ndarray:
-    """y_m at arclength s from Theta (n, m): rotating-frame y, lab-frame (uniform Omega_0) y, or
-    the deflection normal to the clamp-tip chord; linear interpolation between nodes."""
+    """y_m at arclength s, read from Theta in one of the ways of `MEASURES`.
+
+    Node positions are interpolated linearly in s, from the clamp (s = 0, at the origin).
+
+    Parameters
+    ----------
+    grid : Grid
+        The model's grid.
+    theta : numpy.ndarray
+        Angles of the nodes, shape (n,) or (n, m) for m instants.
+    s : float
+        Arclength as a fraction of L (dimensionless).
+    measure : str
+        "y" (rotating frame), "lab" (a frame turning uniformly at Omega_0: the drive's rigid
+        oscillation included) or "chord" (deflection normal to the clamp-tip chord).
+    dl : Dimensionless or None
+        The scene; needed for "lab".
+    tau : numpy.ndarray or None
+        Dimensionless times of the m instants; needed for "lab".
+
+    Returns
+    -------
+    numpy.ndarray
+        y_m at the m instants, in units of L (dimensionless).
+
+    Raises
+    ------
+    ValueError
+        For an unknown measure.
+    """
     theta = theta[:, None] if theta.ndim == 1 else theta
     x, y = grid.positions(theta)  # nodes 1..N
     S = np.concatenate([[0.0], grid.s])
@@ -59,8 +87,25 @@ def midspan_measure(
     raise ValueError(f"measure = {measure!r}: unknown; allowed: {', '.join(MEASURES)}")
 
 
-def continuum_quasistatic_theta(dl: Dimensionless, taus: np.ndarray, N: int = 160):
-    """Quasi-static Theta on grids N/2 and N: [(grid_N/2, theta_N/2), (grid_N, theta_N)]."""
+def continuum_quasistatic_theta(
+    dl: Dimensionless, taus: np.ndarray, N: int = 160
+) -> list[tuple[Grid, np.ndarray]]:
+    """Quasi-static Theta on the grids N/2 and N, the two ends of a Richardson limit.
+
+    Parameters
+    ----------
+    dl : Dimensionless
+        The scene.
+    taus : numpy.ndarray
+        Dimensionless times, shape (m,).
+    N : int
+        Intervals of the finer grid (even).
+
+    Returns
+    -------
+    list of (Grid, numpy.ndarray)
+        [(grid N/2, Theta), (grid N, Theta)], each Theta of shape (n, m).
+    """
     out = []
     for n in (N // 2, N):
         model = DiscreteElastica(dl, n)
@@ -71,8 +116,26 @@ def continuum_quasistatic_theta(dl: Dimensionless, taus: np.ndarray, N: int = 16
 def hypothesis_quasistatic_midspan(
     h: Any, dl: Dimensionless, N: int, taus: np.ndarray
 ) -> np.ndarray:
-    """Quasi-static y_m at s = 1/2: on the dynamic model's grid N ("discrete") or the Richardson
-    limit of the static problem on N = 80 and 160 ("continuum", = bvp4c to 1e-5)."""
+    """Quasi-static y_m at s = 1/2, as the hypothesis asks.
+
+    Parameters
+    ----------
+    h : Hypothesis
+        Its ``qs``: "discrete" reads our model on grid N; any other value the continuum, the
+        Richardson limit of the static problem on N = 80 and 160 (bvp4c's answer to 1e-5).
+        Its ``measure`` says how y_m is read (`midspan_measure`).
+    dl : Dimensionless
+        The scene.
+    N : int
+        Grid intervals of the "discrete" answer.
+    taus : numpy.ndarray
+        Dimensionless times, shape (m,).
+
+    Returns
+    -------
+    numpy.ndarray
+        y_m at `taus`, in units of L (dimensionless).
+    """
     if h.qs == "discrete":
         model = DiscreteElastica(dl, N)
         th = quasistatic_series(model, taus)
@@ -84,8 +147,25 @@ def hypothesis_quasistatic_midspan(
 
 
 def dynamic_model(h: Any, dl: Dimensionless, N: int) -> DiscreteModel:
-    """The dynamic model (ours or printed) of the scene it runs (eta + 2 lam0 for the printed
-    n_y sign with Coriolis: for small angles an extra damping 2 lam W Theta_t)."""
+    """The dynamic model a hypothesis runs: ours or the printed appendix's.
+
+    With ``coriolis_ny`` the scene's eta becomes eta + 2 |lam0|: for small angles the printed
+    +2 I y_t of n_y with Coriolis on is an extra damping 2 lam W Theta_t.
+
+    Parameters
+    ----------
+    h : Hypothesis
+        Its ``model`` (printed misprints; empty: ours) and ``coriolis_ny``.
+    dl : Dimensionless
+        The scene.
+    N : int
+        Grid intervals.
+
+    Returns
+    -------
+    DiscreteModel
+        A `DiscreteElastica`, or a `PrintedElastica` with the hypothesis's misprints.
+    """
     eff = replace(dl, eta=dl.eta + 2.0 * abs(dl.lam0)) if h.coriolis_ny else dl
     if h.model:
         return PrintedElastica(eff, N, h.model)
@@ -102,8 +182,38 @@ def _ours_orbit(model: DiscreteModel, m: int, state: dict, guess=None):
     return ss
 
 
-def periodic_response(h: Any, model: DiscreteModel, m: int, state: dict):
-    """(Theta (n, m), taus) of the steady periodic orbit, m uniform samples of one period."""
+def periodic_response(
+    h: Any, model: DiscreteModel, m: int, state: dict
+) -> tuple[np.ndarray, np.ndarray]:
+    """Theta of the steady periodic orbit at m uniform samples of one period.
+
+    Our model: the collocated orbit of `steady_state` without time stepping.  A printed model:
+    `solve_periodic` (maxiter 30), tried again from no guess when it fails or its harmonic tail
+    exceeds 1e-4.  The orbit is kept in `state` as the guess for the next f_d.
+
+    Parameters
+    ----------
+    h : Hypothesis
+        Its ``model`` says which solver.
+    model : DiscreteModel
+        The dynamic model (`dynamic_model`).
+    m : int
+        Samples per period.
+    state : dict
+        Carries the orbit along a line (key ``guess``); updated in place.
+
+    Returns
+    -------
+    theta : numpy.ndarray
+        Shape (n, m).
+    taus : numpy.ndarray
+        Dimensionless times of the samples, shape (m,).
+
+    Raises
+    ------
+    RuntimeError
+        When no periodic orbit is found.
+    """
     if not h.model:
         ss = _ours_orbit(model, m, state)
         return ss.theta, ss.tau
@@ -126,10 +236,36 @@ def _stepper(h: Any, model: DiscreteModel):
     return method, system.rhs, system.jac
 
 
-def integrator_steps_response(h: Any, model: DiscreteModel, state: dict):
-    """(Theta, taus) at the integrator's own output steps (as ode23tb
-    returns them): from the orbit ("steps": the last 2 of `step_periods` periods) or the last period
-    of a run from rest ("steps_rest")."""
+def integrator_steps_response(
+    h: Any, model: DiscreteModel, state: dict
+) -> tuple[np.ndarray, np.ndarray]:
+    """Theta at the integrator's own output steps, as ode23tb returns them.
+
+    "steps": from our collocated orbit, ``step_periods`` periods, the last 2 kept;
+    "steps_rest": from rest over whole periods at least ``t_end_tau`` long, the last one kept.
+    The kept window is half open, [start, end); its step count goes to ``state["steps"]``.
+
+    Parameters
+    ----------
+    h : Hypothesis
+        Its ``dynamics``, ``step_periods``, ``t_end_tau``, ``method``, ``rtol`` and ``atol``.
+    model : DiscreteModel
+        The dynamic model.
+    state : dict
+        Carries the orbit along a line; receives ``steps``.
+
+    Returns
+    -------
+    theta : numpy.ndarray
+        Shape (n, k), k the steps kept.
+    taus : numpy.ndarray
+        Their dimensionless times (not uniform), shape (k,).
+
+    Raises
+    ------
+    RuntimeError
+        When no periodic orbit is found ("steps") or time stepping fails.
+    """
     n, P = model.n, model.dl.period
     if h.dynamics == "steps":
         ss = _ours_orbit(model, 32, state)
@@ -150,10 +286,36 @@ def integrator_steps_response(h: Any, model: DiscreteModel, state: dict):
     return sol.y[:n, sel], sol.t[sel]
 
 
-def rest_response(h: Any, model: DiscreteModel, m: int, T: float):
-    """(Theta, taus) of a run from rest: uniform samples over [0, T_end) for a window of
-    ("periods", k) or ("seconds", t) [T: the time unit, s], or the last k periods of a run of
-    at least `t_end_tau` for ("last", k)."""
+def rest_response(h: Any, model: DiscreteModel, m: int, T: float) -> tuple[np.ndarray, np.ndarray]:
+    """Theta of a run from rest at uniform samples of a window.
+
+    Window ("periods", k) or ("seconds", t): about m samples a period over [0, T_end), T_end
+    k periods or t seconds; ("last", k): m samples a period over the last k periods of a run of
+    whole periods at least ``t_end_tau`` (and k periods) long.
+
+    Parameters
+    ----------
+    h : Hypothesis
+        Its ``window``, ``t_end_tau``, ``method``, ``rtol`` and ``atol``.
+    model : DiscreteModel
+        The dynamic model.
+    m : int
+        Samples per period.
+    T : float
+        The time unit [s], for a window in seconds.
+
+    Returns
+    -------
+    theta : numpy.ndarray
+        Shape (n, k).
+    taus : numpy.ndarray
+        Dimensionless times of the samples, shape (k,).
+
+    Raises
+    ------
+    RuntimeError
+        When time stepping fails.
+    """
     kind, value = h.window
     P = model.dl.period
     if kind == "periods":
@@ -175,8 +337,36 @@ def rest_response(h: Any, model: DiscreteModel, m: int, T: float):
     return sol.y[: model.n], taus
 
 
-def dynamic_response(h: Any, dl: Dimensionless, N: int, m: int, state: dict, T: float):
-    """(grid, Theta (n, k), taus) of the dynamic model under hypothesis h on grid N."""
+def dynamic_response(
+    h: Any, dl: Dimensionless, N: int, m: int, state: dict, T: float
+) -> tuple[Grid, np.ndarray, np.ndarray]:
+    """The dynamic response of one scene under a hypothesis.
+
+    Parameters
+    ----------
+    h : Hypothesis
+        Its ``dynamics`` picks `periodic_response` ("periodic"), `integrator_steps_response`
+        ("steps", "steps_rest") or `rest_response` (any other value, "rest").
+    dl : Dimensionless
+        The scene.
+    N : int
+        Grid intervals of the dynamic model.
+    m : int
+        Samples per period.
+    state : dict
+        Carries the orbit along a line.
+    T : float
+        The time unit [s].
+
+    Returns
+    -------
+    grid : Grid
+        The dynamic model's grid.
+    theta : numpy.ndarray
+        Shape (n, k).
+    taus : numpy.ndarray
+        Dimensionless times, shape (k,).
+    """
     model = dynamic_model(h, dl, N)
     if h.dynamics == "periodic":
         theta, taus = periodic_response(h, model, m, state)

@@ -1,14 +1,9 @@
 """The paper's printed numbers against this reproduction: one row per claim, with a status.
 
-    reproduced    ours lies within the paper's stated uncertainty or printed rounding (or on the
-                  claimed side of a threshold, for at_least / at_most / below claims)
-    explained     ours does not, but a named hypothesis run through this model gives a value
-                  within that same tolerance (explained_value; the others tried are listed)
-    unexplained   neither; every hypothesis tried and what it gave is in `explanation`
-
 Printed values come from one data file (rotbeam/paper/paper_claims.yaml); "ours" values are
 read from the workflow's outputs by `ours_values`; hypotheses come from the studies as a long
-table (claim, hypothesis, value, note).  Pure functions on DataFrames and dicts.
+table (claim, hypothesis, value, note).  Pure functions on DataFrames and dicts.  The statuses
+(reproduced, explained, unexplained) and the verdict: docs/reproduction.md.
 """
 
 from __future__ import annotations
@@ -24,12 +19,33 @@ from .collapse import collapse_fraction
 from .hypotheses import plateau
 from .printed import KINDS
 
+#: the columns of the claims table
 COLUMNS = ["id", "source", "paper", "ours", "unit", "status", "explained_value", "explanation"]
+#: the columns of a long hypothesis table
 HYPOTHESIS_COLUMNS = ["claim", "hypothesis", "value", "note"]
 
 
 def agrees(value: float, paper: float, tolerance: float, kind: str) -> bool:
-    """Whether `value` reproduces the printed `paper` value under `kind` (NaN never does)."""
+    """Whether a value reproduces a printed one under the claim's kind of tolerance.
+
+    Parameters
+    ----------
+    value : float
+        Ours, or a hypothesis's; NaN (or None) never agrees.
+    paper : float
+        The printed value.
+    tolerance : float
+        Half-width of the band around `paper`, in its unit (unused for the sides).
+    kind : str
+        One of `rotbeam.paper.printed.KINDS`: "at_least" (value >= paper), "at_most" (<=),
+        "below" (<); any other kind is the band |value - paper| <= tolerance, with a hair of
+        round-off allowed on its edge.
+
+    Returns
+    -------
+    bool
+        True when the value agrees.
+    """
     if value is None or not math.isfinite(value):
         return False
     if kind == "at_least":
@@ -54,7 +70,29 @@ def _band(paper: float, tolerance: float, kind: str) -> str:
 
 
 def judge_row(claim: pd.Series, ours: float, note: str, tried: pd.DataFrame) -> dict:
-    """Status, explained_value and explanation of one claim."""
+    """Status, explained value and explanation of one claim.
+
+    "reproduced": ours agrees (`agrees`); "explained": it does not, but a hypothesis that
+    counts does, and the one closest to the printed value explains it; "unexplained": neither.
+    The explanation gives the band and every hypothesis tried with what it gave.
+
+    Parameters
+    ----------
+    claim : pandas.Series
+        A row of the claims table (id, source, paper, unit, tolerance, kind).
+    ours : float
+        Our value.
+    note : str
+        How ours is obtained ("" for nothing to say).
+    tried : pandas.DataFrame
+        The hypotheses for this claim: claim, hypothesis, value, note and optionally
+        ``counts`` (a row with False is listed but explains nothing).
+
+    Returns
+    -------
+    dict
+        One row of `COLUMNS`; explained_value is NaN unless the status is "explained".
+    """
     p, tol, kind = float(claim["paper"]), float(claim["tolerance"]), str(claim["kind"])
     band = _band(p, tol, kind)
     tries = [
@@ -94,7 +132,23 @@ def judge_row(claim: pd.Series, ours: float, note: str, tried: pd.DataFrame) -> 
 def judge(
     claims: pd.DataFrame, ours: dict[str, tuple[float, str]], hypotheses: pd.DataFrame
 ) -> pd.DataFrame:
-    """The claims table: one row per claim in file order, COLUMNS."""
+    """The claims table: every claim judged against ours and its hypotheses (`judge_row`).
+
+    Parameters
+    ----------
+    claims : pandas.DataFrame
+        The claims table (`rotbeam.paper.printed.read_claims`).
+    ours : dict
+        {claim id: (value, note)} (`ours_values`); a claim missing here is NaN, "not computed
+        by this workflow".
+    hypotheses : pandas.DataFrame
+        The long table (claim, hypothesis, value, note, optionally counts) of every study.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per claim in file order, columns `COLUMNS`.
+    """
     hyp = hypotheses if len(hypotheses) else pd.DataFrame(columns=HYPOTHESIS_COLUMNS)
     rows = []
     for _, c in claims.iterrows():
@@ -104,12 +158,25 @@ def judge(
 
 
 def c_hypotheses_long(table: pd.DataFrame, claims: pd.DataFrame | None = None) -> pd.DataFrame:
-    """The c study's (hypothesis, threshold, c) rows as claims c_<threshold>.
+    """The c study's (hypothesis, threshold, c) rows as hypotheses for the claims c_<threshold>.
 
     One mechanism must give the printed c at every threshold at once (App. D prints four values
     of one pipeline): with the claims given, a hypothesis that misses any threshold it was run
     at explains none of them (`counts` False, and its note says so), so that no claim is
-    explained by one reading and its neighbour by another."""
+    explained by one reading and its neighbour by another.
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        The c study's long table (`rotbeam.paper.c_hypotheses.study_table`).
+    claims : pandas.DataFrame or None
+        The claims table; None: every row counts.
+
+    Returns
+    -------
+    pandas.DataFrame
+        Columns claim, hypothesis, value, note and counts.
+    """
     rows = [
         {"claim": f"c_{float(r['threshold']):.2f}", "hypothesis": str(r["hypothesis"]),
          "value": float(r["c"]), "note": "", "counts": True}
@@ -137,7 +204,41 @@ def c_hypotheses_long(table: pd.DataFrame, claims: pd.DataFrame | None = None) -
 
 @dataclass
 class Outputs:
-    """The workflow outputs the claims read (DataFrames as written, dicts from JSON)."""
+    """The workflow outputs the claims read (DataFrames as written, dicts from JSON).
+
+    Attributes
+    ----------
+    table1 : pandas.DataFrame
+        Table 1 (quantity, value), results/tables/table1.csv.
+    c_per_threshold : pandas.DataFrame
+        c of the reference beam per threshold (column ref_c_root).
+    boundary_ref : pandas.DataFrame
+        The reference beam's boundary table, every threshold.
+    fig6_fit, fig7_fit : dict
+        The fits of c of Fig. 6 and Fig. 7.
+    fig7_boundary : pandas.DataFrame
+        The boundary tables of the Fig. 7 grid, concatenated.
+    fig3_line, fig3_series : pandas.DataFrame
+        Fig. 3's sweep line and its kept time series.
+    fig5_series : list of pandas.DataFrame
+        Fig. 5's kept time series.
+    ref_lines : pandas.DataFrame
+        The reference beam's boundary sweep lines, concatenated.
+    c0_table : pandas.DataFrame
+        App. E's c_0 per threshold.
+    convergence : pandas.DataFrame
+        Fig. B.8's grid-convergence lines.
+    main_threshold : float
+        The main Delta RMS threshold (dimensionless).
+    amplitude : float
+        Drive amplitude a [rad/s].
+    convergence_tolerance : float
+        Relative RMS tolerance of N_converged.
+    stretch : pandas.DataFrame or None
+        `rotbeam.paper.stretch_study`'s table; None: the stretch claims are not computed.
+    extra : dict
+        {claim id: (value, note)} laid over the values read.
+    """
 
     table1: pd.DataFrame
     c_per_threshold: pd.DataFrame
@@ -177,7 +278,19 @@ def _slope_top(b: pd.DataFrame, column: str) -> float:
 
 
 def peak_frequency(line: pd.DataFrame) -> float:
-    """f_d of the largest RMS(y_m), refined by a parabola through the sampled peak."""
+    """The resonance of a sweep line: f_d of the largest RMS(y_m), refined by a parabola.
+
+    Parameters
+    ----------
+    line : pandas.DataFrame
+        A sweep line (f_d, rms_dynamic).
+
+    Returns
+    -------
+    float
+        The vertex of the parabola through the sampled peak and its neighbours [Hz]; the
+        sampled peak itself at an end of the line or when the parabola opens upwards.
+    """
     ln = line[np.isfinite(line["rms_dynamic"])].sort_values("f_d")
     f, r = ln["f_d"].to_numpy(float), ln["rms_dynamic"].to_numpy(float)
     k = int(np.argmax(r))
@@ -189,7 +302,18 @@ def peak_frequency(line: pd.DataFrame) -> float:
 
 
 def spectrum_peak_hz(series: pd.DataFrame) -> float:
-    """Frequency [Hz] of the largest |FFT(y_m)| of a kept dynamic series (0 Hz left out)."""
+    """The frequency of the largest |FFT(y_m)| of a kept dynamic series, 0 Hz left out.
+
+    Parameters
+    ----------
+    series : pandas.DataFrame
+        A kept series (tau, t_s, y_m_dynamic).
+
+    Returns
+    -------
+    float
+        The frequency [Hz].
+    """
     tau, t = series["tau"].to_numpy(float), series["t_s"].to_numpy(float)
     T = (t[1] - t[0]) / (tau[1] - tau[0])
     f, amp = power_spectrum(tau, series["y_m_dynamic"].to_numpy(float))
@@ -198,7 +322,22 @@ def spectrum_peak_hz(series: pd.DataFrame) -> float:
 
 
 def converged_n(conv: pd.DataFrame, tolerance: float) -> float:
-    """Smallest N whose RMS is within `tolerance` of the finest N at every (Omega_0, f_d)."""
+    """The smallest N whose RMS is within a tolerance of the finest N at every (Omega_0, f_d).
+
+    Every N between it and the finest passes too.
+
+    Parameters
+    ----------
+    conv : pandas.DataFrame
+        Fig. B.8's grid-convergence lines (N, omega0, f_d, rms_dynamic).
+    tolerance : float
+        Relative tolerance on RMS(y_m) (dimensionless).
+
+    Returns
+    -------
+    float
+        That N; NaN when the second finest N fails already.
+    """
     n_max = conv["N"].max()
     ok_n = []
     for n in sorted(conv["N"].unique()):
@@ -233,7 +372,22 @@ def _fig5(o: Outputs, at: dict) -> tuple[float, str]:
 
 
 def window_max(b: pd.DataFrame, at: dict) -> tuple[float, str]:
-    """Largest E*/E_n of boundary rows with h/L = at['h_over_L'] and C_max in at['C_max']."""
+    """The largest E*/E_n of the boundary rows inside a window of Fig. D.9.
+
+    Parameters
+    ----------
+    b : pandas.DataFrame
+        Boundary rows (h_over_L, C_max, E_star_root, E_n).
+    at : dict
+        The window: ``h_over_L`` and ``C_max``, a pair (lowest, highest).
+
+    Returns
+    -------
+    value : float
+        The largest finite E*/E_n (dimensionless); NaN with none.
+    note : str
+        How many boundary points the window holds.
+    """
     (c_lo, c_hi), hl = at["C_max"], float(at["h_over_L"])
     sel = b[np.isclose(b["h_over_L"], hl) & (b["C_max"] >= c_lo) & (b["C_max"] <= c_hi)]
     v = (sel["E_star_root"] / sel["E_n"]).to_numpy(float)
@@ -242,7 +396,20 @@ def window_max(b: pd.DataFrame, at: dict) -> tuple[float, str]:
 
 
 def plateau_coefficient(table1: pd.DataFrame) -> float:
-    """App. D's pi lambda_1 A L^3 sqrt(rho) / (beta_1^2 I sqrt(3 E)) f_n from Table 1 (SI)."""
+    """App. D's plateau coefficient pi lambda_1 A L^3 sqrt(rho) / (beta_1^2 I sqrt(3 E)) f_n.
+
+    The plateau of E*/E_n as C_max -> 0 is this coefficient times c; lambda_1 = h/L.
+
+    Parameters
+    ----------
+    table1 : pandas.DataFrame
+        Table 1 (quantity, value): L, h, b in mm, E in MPa, rho in kg/m^3, f_n in Hz.
+
+    Returns
+    -------
+    float
+        The coefficient, from the values in SI.
+    """
     from ..model.params import BETA1
 
     q = table1.set_index("quantity")["value"]
@@ -259,8 +426,22 @@ def _at(claims: pd.DataFrame) -> dict[str, dict]:
 
 
 def ours_values(o: Outputs, claims: pd.DataFrame) -> dict[str, tuple[float, str]]:
-    """(value, note) per claim id, every value read from the workflow's outputs; where a claim
-    is evaluated (drive, window, band) comes from its `at` in the claims file."""
+    """Our value of every claim, read from the workflow's outputs.
+
+    Where a claim is evaluated (drive, window, band) comes from its ``at`` in the claims file.
+
+    Parameters
+    ----------
+    o : Outputs
+        The workflow's outputs.
+    claims : pandas.DataFrame
+        The claims table (`rotbeam.paper.printed.read_claims`).
+
+    Returns
+    -------
+    dict
+        {claim id: (value, note)}: the value in the claim's unit and how it is obtained.
+    """
     G, a, th = _t1(o, "G"), o.amplitude, o.main_threshold
     at = _at(claims)
     ref = _main(o.boundary_ref, th)
@@ -319,9 +500,27 @@ def ours_values(o: Outputs, claims: pd.DataFrame) -> dict[str, tuple[float, str]
 
 
 def stretch_claim(table: pd.DataFrame, cid: str, within: float) -> tuple[float, str]:
-    """(value, note) of the inextensible_* claims from the stretch study's table: the largest
-    |f_d* change| or the C_max where it passes `within`; the note gives every line's clamp
-    strain and the studied lines' changes of f_d*, RMS and Delta RMS."""
+    """Our value of an inextensible_* claim, from the stretch study's table.
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        `rotbeam.paper.stretch_study.stretch_study`'s table.
+    cid : str
+        "inextensible_c_max" for the C_max where |f_d* change| passes `within`
+        (`rotbeam.paper.stretch_study.inextensible_limit`); any other id for the largest
+        |f_d* change| over the studied lines.
+    within : float
+        Relative change of f_d* (dimensionless) that marks the limit.
+
+    Returns
+    -------
+    value : float
+        The C_max (dimensionless), or the relative change (dimensionless; NaN with no studied
+        line).
+    note : str
+        Every line's clamp strain, and the studied lines' changes of f_d*, RMS and Delta RMS.
+    """
     from .stretch_study import inextensible_limit
 
     parts = []
@@ -344,7 +543,25 @@ def stretch_claim(table: pd.DataFrame, cid: str, within: float) -> tuple[float, 
 def builtin_hypotheses(
     o: Outputs, claims: pd.DataFrame, ours: dict[str, tuple[float, str]]
 ) -> pd.DataFrame:
-    """Hypotheses that need no study of their own (readings of a printed range or digit)."""
+    """Hypotheses that need no study of their own: readings of a printed range or digit.
+
+    They are: the simulated C range starting at Omega_0 = 0; the experimental C range with a
+    left out of C = G (Omega_0 + a)^2; and sqrt(0.1) truncated, not rounded, for c_0.
+
+    Parameters
+    ----------
+    o : Outputs
+        The workflow's outputs (G from Table 1, the amplitude).
+    claims : pandas.DataFrame
+        The claims table (printed values and ``at``).
+    ours : dict
+        {claim id: (value, note)} (`ours_values`).
+
+    Returns
+    -------
+    pandas.DataFrame
+        A long hypothesis table, columns `HYPOTHESIS_COLUMNS`.
+    """
     G, a, at = _t1(o, "G"), o.amplitude, _at(claims)
     paper = claims.set_index("id")["paper"]
     rows = [{"claim": "sim_C_min", "hypothesis": "the range starts at Omega_0 = 0 (C = G a^2)",
@@ -369,7 +586,18 @@ def builtin_hypotheses(
 
 
 def claims_markdown(table: pd.DataFrame) -> str:
-    """The claims table as Markdown, with a count of each status on top."""
+    """The claims table as Markdown, with a count of each status on top.
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        The claims table (`judge`).
+
+    Returns
+    -------
+    str
+        The Markdown document.
+    """
     from ..report.io import markdown_table
 
     counts = table["status"].value_counts()

@@ -1,8 +1,7 @@
 """How well a grid of beams collapses on Eq. (scaled_analytical_sol), E*/E_n = c sqrt(1 + x).
 
-x = S_1 G a^2 C_max / E_n^2.  With E_n = G a 2 pi f_n and G (2 pi f_n)^2 = beta_1^4 / delta
-(time by T, G = T^2 / delta), x = S_1 delta C_max / beta_1^4: the abscissa depends on the beam
-only through S_1(r_o) delta, which is why a bounded S_1 delta bounds E*/E_n at a given C_max.
+x = S_1 G a^2 C_max / E_n^2; why it depends on the beam only through S_1 delta, and what that
+bounds: docs/reproduction.md.
 """
 
 from __future__ import annotations
@@ -17,26 +16,83 @@ from ..model.surrogate import southwell_coefficient
 
 
 def scaled_abscissa(row: pd.Series) -> float:
-    """x = S_1 G a^2 C_max / E_n^2 of one boundary row (a is folded into E_n = G a 2 pi f_n)."""
+    """The abscissa x = S_1 G a^2 C_max / E_n^2 of one boundary row.
+
+    Parameters
+    ----------
+    row : pandas.Series
+        A boundary row: hub_ratio, G [s^2], C_max and E_n (a is folded into E_n = G a 2 pi f_n).
+
+    Returns
+    -------
+    float
+        x (dimensionless).
+    """
     S1 = southwell_coefficient(float(row["hub_ratio"]))
     return S1 * float(row["G"]) * float(row["C_max"]) / float(row["E_n"]) ** 2
 
 
 def southwell_delta(delta: float) -> float:
-    """S_1(r_o) delta for a beam whose clamp sits at r_o = 1/delta - 1 lengths from the axis."""
+    """S_1(r_o) delta, the only way x depends on the beam.
+
+    Parameters
+    ----------
+    delta : float
+        L/R (dimensionless, in (0, 1)); the clamp sits r_o = 1/delta - 1 lengths from the axis.
+
+    Returns
+    -------
+    float
+        S_1(r_o) delta (dimensionless).
+    """
     return southwell_coefficient(1.0 / delta - 1.0) * delta
 
 
 def scaled_bound(c: float, delta: float, c_max: float) -> float:
-    """E*/E_n from Eq. (scaled_analytical_sol) at C_max for a beam of L/R = delta."""
+    """E*/E_n from Eq. (scaled_analytical_sol) at one C_max for a beam of L/R = delta.
+
+    Parameters
+    ----------
+    c : float
+        The constant c (dimensionless).
+    delta : float
+        L/R (dimensionless, in (0, 1)).
+    c_max : float
+        C_max (dimensionless).
+
+    Returns
+    -------
+    float
+        c sqrt(1 + S_1 delta C_max / beta_1^4) (dimensionless).
+    """
     return c * math.sqrt(1.0 + southwell_delta(delta) * c_max / BETA1**4)
 
 
 def collapse_by_beam(
     boundary: pd.DataFrame, c: float, threshold: float, tolerance: float = 0.10
 ) -> pd.DataFrame:
-    """Per beam: the largest |E*/E_n / (c sqrt(1 + x)) - 1| over its lines and whether it
-    collapses (every line has a crossing and lies within `tolerance`)."""
+    """Per beam: how far its boundary lies from c sqrt(1 + x), and whether it collapses.
+
+    A beam collapses when every line has a crossing and lies within `tolerance` of the curve.
+
+    Parameters
+    ----------
+    boundary : pandas.DataFrame
+        Boundary rows of a grid (beam, threshold, found, E_star_root, E_n, hub_ratio, G, C_max,
+        E, L, h_over_L, zeta).
+    c : float
+        The constant c (dimensionless).
+    threshold : float
+        The Delta RMS threshold whose rows are read.
+    tolerance : float
+        Largest relative deviation |E*/E_n / (c sqrt(1 + x)) - 1| of a collapsing beam.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per beam: beam, E, L, h_over_L, zeta, lines, lines_with_crossing,
+        worst_deviation (NaN with no crossing) and collapses.
+    """
     sub = boundary[np.isclose(boundary["threshold"], threshold)].copy()
     rows = []
     for beam, b in sub.groupby("beam", sort=True):
@@ -58,6 +114,23 @@ def collapse_by_beam(
 def collapse_fraction(
     boundary: pd.DataFrame, c: float, threshold: float, tolerance: float = 0.10
 ) -> float:
-    """Fraction of beams that collapse (NaN for an empty table)."""
+    """The fraction of a grid's beams that collapse (`collapse_by_beam`).
+
+    Parameters
+    ----------
+    boundary : pandas.DataFrame
+        Boundary rows of a grid.
+    c : float
+        The constant c (dimensionless).
+    threshold : float
+        The Delta RMS threshold whose rows are read.
+    tolerance : float
+        Largest relative deviation of a collapsing beam.
+
+    Returns
+    -------
+    float
+        The fraction, in [0, 1]; NaN with no beam.
+    """
     t = collapse_by_beam(boundary, c, threshold, tolerance)
     return float(t["collapses"].mean()) if len(t) else math.nan

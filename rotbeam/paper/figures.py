@@ -17,7 +17,19 @@ from ..report.style import ACCENT, DYN, GREY, QS, apply_style, figure, panel_lab
 
 
 def fig1_drive(omega0: float, amplitude: float, f_d: float, pdf: str, png: str) -> None:
-    """Fig. 1b,c: Omega(t) and dOmega/dt over two drive periods."""
+    """Fig. 1b,c: the drive, Omega(t) and dOmega/dt, over two drive periods.
+
+    Parameters
+    ----------
+    omega0 : float
+        Mean rotation rate Omega_0 [rad/s].
+    amplitude : float
+        Drive amplitude a [rad/s].
+    f_d : float
+        Drive frequency [Hz].
+    pdf, png : str
+        Paths the figure is written to.
+    """
     d = Drive(omega0, amplitude, f_d)
     t = np.linspace(0.0, 2.0 / f_d, 400)
     fig, (a, b) = figure(2, 1, height=4.2, sharex=True)
@@ -34,7 +46,16 @@ def fig1_drive(omega0: float, amplitude: float, f_d: float, pdf: str, png: str) 
 
 
 def fig2_shapes(shapes: pd.DataFrame, pdf: str, png: str) -> None:
-    """Fig. 2c stand-in: lab-frame centerlines over one period, midspan marked."""
+    """Fig. 2c stand-in: centerlines over one period, lab and rotating frame, midspan marked.
+
+    Parameters
+    ----------
+    shapes : pandas.DataFrame
+        Centerlines per frame (frame, phase, s, x_lab, y_lab, x_rot, y_rot; lengths in units of
+        L).
+    pdf, png : str
+        Paths the figure is written to.
+    """
     fig, (a, b) = figure(1, 2, width=8.0, height=4.0)
     frames = sorted(shapes["frame"].unique())
     cmap = matplotlib.colormaps["viridis"]
@@ -61,8 +82,20 @@ def fig2_shapes(shapes: pd.DataFrame, pdf: str, png: str) -> None:
 def fig3_resonance(
     line: pd.DataFrame, series: pd.DataFrame, pdf: str, png: str, measured=None
 ) -> None:
-    """Fig. 3: resonance curve RMS(y_m) vs f_d, y_m(tau) at one f_d, its power spectrum;
-    `measured` (a ResonanceCurve) is drawn over panel (a) when given."""
+    """Fig. 3: resonance curve RMS(y_m) against f_d, y_m(tau) at one f_d, its power spectrum.
+
+    Parameters
+    ----------
+    line : pandas.DataFrame
+        The sweep line (f_d, rms_dynamic, rms_quasistatic, converged, omega0); failed points
+        are marked.
+    series : pandas.DataFrame
+        The kept time series at one f_d (tau, t_s, f_d, y_m_dynamic, y_m_quasistatic).
+    pdf, png : str
+        Paths the figure is written to.
+    measured : ResonanceCurve or None
+        A measured resonance curve (`rotbeam.analysis.measurements`), drawn over panel (a).
+    """
     fig, axes = figure(1, 3, width=11.0, height=3.6)
     a, b, c = axes
     ok = line["converged"].astype(bool)
@@ -111,8 +144,25 @@ def fig4_compare(
     png: str,
     measured: dict | None = None,
 ) -> None:
-    """Fig. 4: RMS dyn/QS and Delta RMS vs f_d/f_n at two Omega_0, f_d* and f_0 marked;
-    `measured` maps an Omega_0 to a ResonanceCurve drawn over that column's RMS panel."""
+    """Fig. 4: RMS dynamic and quasi-static and Delta RMS against f_d/f_n at two Omega_0.
+
+    f_d*, f_0 and the peak of the scan are marked, and the first scanned point at or above the
+    threshold.
+
+    Parameters
+    ----------
+    lines : sequence of pandas.DataFrame
+        The two sweep lines, one per Omega_0 (f_d, rms_dynamic, rms_quasistatic, delta_rms,
+        omega0, f_n_hz, f0_hz).
+    crit : pandas.DataFrame
+        Their boundary rows (omega0, f_d_root, f_d_grid).
+    threshold : float
+        The Delta RMS threshold.
+    pdf, png : str
+        Paths the figure is written to.
+    measured : dict or None
+        {Omega_0 [rad/s]: a measured ResonanceCurve}, drawn over that column's RMS panel.
+    """
     measured = measured or {}
     fig, axes = figure(2, len(lines), width=4.2 * len(lines), height=6.0, squeeze=False)
     for j, line in enumerate(lines):
@@ -156,7 +206,20 @@ def fig4_compare(
 def fig5_phase(
     boundary: pd.DataFrame, threshold: float, series: Sequence[pd.DataFrame], pdf: str, png: str
 ) -> None:
-    """Fig. 5: E*(C_max) with the quasi-static region shaded; time series above/below."""
+    """Fig. 5: E*(C_max) with the quasi-static region shaded, and time series on either side.
+
+    Parameters
+    ----------
+    boundary : pandas.DataFrame
+        The reference beam's boundary table (threshold, C_max, E_star_root, E_star_grid).
+    threshold : float
+        The Delta RMS threshold drawn.
+    series : sequence of pandas.DataFrame
+        Two kept time series (tau, y_m_dynamic, y_m_quasistatic, C_max, E_max, delta_rms),
+        marked in panel (a) and drawn in (b) and (c).
+    pdf, png : str
+        Paths the figure is written to.
+    """
     apply_style()
     fig = plt.figure(figsize=(10, 4.0))
     gs = fig.add_gridspec(2, 2, width_ratios=[1.2, 1])
@@ -193,8 +256,24 @@ def fig5_phase(
     save(fig, pdf, png)
 
 
-def fig6_critical(boundary: pd.DataFrame, threshold: float, c: float, c_err: float, pdf, png):
-    """Fig. 6: f_0/f_n, f_d*/f_n and c f_0/f_n vs C_max."""
+def fig6_critical(
+    boundary: pd.DataFrame, threshold: float, c: float, c_err: float, pdf: str, png: str
+) -> None:
+    """Fig. 6: f_0/f_n, f_d*/f_n and c f_0/f_n against C_max.
+
+    Parameters
+    ----------
+    boundary : pandas.DataFrame
+        The reference beam's boundary table (threshold, C_max, f_n_hz, f0_hz, f_d_root).
+    threshold : float
+        The Delta RMS threshold drawn.
+    c : float
+        The fitted c (dimensionless).
+    c_err : float
+        Its standard error.
+    pdf, png : str
+        Paths the figure is written to.
+    """
     sub = boundary[np.isclose(boundary["threshold"], threshold)].sort_values("C_max")
     fn = sub["f_n_hz"]
     fig, a = figure(height=4.0)
@@ -209,7 +288,15 @@ def fig6_critical(boundary: pd.DataFrame, threshold: float, c: float, c_err: flo
 
 
 def figB8_convergence(lines: pd.DataFrame, pdf: str, png: str) -> None:
-    """Fig. B.8: RMS(y_m) vs N for each (Omega_0, f_d), relative to the finest N."""
+    """Fig. B.8: RMS(y_m) against N for each (Omega_0, f_d), and its error against the finest N.
+
+    Parameters
+    ----------
+    lines : pandas.DataFrame
+        The grid-convergence lines (N, omega0, f_d, rms_dynamic).
+    pdf, png : str
+        Paths the figure is written to.
+    """
     fig, (a, b) = figure(1, 2, width=9.0, height=3.8)
     Nmax = lines["N"].max()
     for (w0, fd), sub in lines.groupby(["omega0", "f_d"]):
@@ -243,7 +330,18 @@ def _scaled_x(row) -> float:
 
 
 def figD9_thresholds(boundary: pd.DataFrame, cfit: pd.DataFrame, pdf: str, png: str) -> None:
-    """Fig. D.9: scaled boundary E*/E_n vs C_max for each threshold, with its fitted c."""
+    """Fig. D.9: the scaled boundary E*/E_n against C_max for each threshold, with its c.
+
+    Parameters
+    ----------
+    boundary : pandas.DataFrame
+        The reference beam's boundary table, every threshold (threshold, C_max, E_star_root,
+        E_n).
+    cfit : pandas.DataFrame
+        c per threshold (threshold and ref_c_root, or c_root).
+    pdf, png : str
+        Paths the figure is written to.
+    """
     fig, a = figure(height=4.2)
     markers = ">", "<", "^", "v", "o", "s", "D"
     for k, (th, sub) in enumerate(boundary.groupby("threshold")):
@@ -263,8 +361,21 @@ ZETA_UNDERDAMPED = 0.2  #: beams above this damping ratio are drawn grey in Fig.
 
 
 def fig7_collapse(boundary: pd.DataFrame, c: float, pdf: str, png: str) -> None:
-    """Fig. 7: (a) E* vs C_max per beam; (b) E*/E_n vs S_1 G a^2 C_max / E_n^2 with
-    Eq. (scaled_analytical_sol), c sqrt(1 + x)."""
+    """Fig. 7: (a) E* against C_max per beam; (b) E*/E_n against x with c sqrt(1 + x).
+
+    x = S_1 G a^2 C_max / E_n^2 (Eq. scaled_analytical_sol); beams with zeta above
+    `ZETA_UNDERDAMPED` are drawn grey.
+
+    Parameters
+    ----------
+    boundary : pandas.DataFrame
+        The grid's boundary rows (E, L, h_over_L, C_max, E_star_root, E_n, hub_ratio, G,
+        optionally zeta).
+    c : float
+        The constant c of the curve (dimensionless).
+    pdf, png : str
+        Paths the figure is written to.
+    """
     fig, (a, b) = figure(1, 2, width=10.0, height=4.2)
     markers = dict(zip(sorted(boundary["E"].unique()), "osD^v<>ph", strict=False))
     hls = sorted(boundary["h_over_L"].unique())
@@ -302,7 +413,19 @@ def fig7_collapse(boundary: pd.DataFrame, c: float, pdf: str, png: str) -> None:
 
 
 def figE10_c0(zeta_max: float, points: int, beam: Beam, pdf: str, png: str) -> None:
-    """Fig. E.10: c_0 vs zeta for threshold 0.10, the reference beam's zeta marked."""
+    """Fig. E.10: c_0 against zeta for threshold 0.10, the reference beam's zeta marked.
+
+    Parameters
+    ----------
+    zeta_max : float
+        The largest zeta drawn (dimensionless).
+    points : int
+        Points from zeta = 0 to zeta_max.
+    beam : Beam
+        The reference beam, whose zeta is marked.
+    pdf, png : str
+        Paths the figure is written to.
+    """
     from ..model.secondorder import c0_root
 
     z = np.linspace(0.0, zeta_max, points)

@@ -32,7 +32,15 @@ from ..solve import floquet
 
 @contextmanager
 def captured_passes() -> Iterator[list[tuple]]:
-    """The arguments of every `floquet.orbit_floquet` call made inside the block."""
+    """Record the arguments of every `floquet.orbit_floquet` call made inside the block.
+
+    The calls still run; `floquet.orbit_floquet` is restored on leaving the block.
+
+    Yields
+    ------
+    list of tuple
+        Filled as the block runs: (jac, Z, period, rhs, rows) per call, Z copied.
+    """
     calls: list[tuple] = []
     original = floquet.orbit_floquet
 
@@ -58,7 +66,25 @@ def _best_of(repeats: int, run) -> tuple[floquet.FloquetResult, float]:
 
 
 def pass_rows(label: str, call: tuple, repeats: int) -> dict:
-    """One Floquet pass: the step count taken and the full one, each timed and against 16 M."""
+    """One Floquet pass, replayed: the step count taken and the full one, each against 16 M.
+
+    Parameters
+    ----------
+    label : str
+        The scene or column the pass belongs to.
+    call : tuple
+        The pass's arguments as `captured_passes` records them.
+    repeats : int
+        Runs of each step count; the fastest is timed.
+
+    Returns
+    -------
+    dict
+        scene, dim (the state's dimension), M (collocation instants), steps (the count taken),
+        spread (the first try's), mu_converged (|mu|max at 16 M steps), error_taken and
+        error_full (|mu|max minus it, as taken and at `floquet.default_steps`), cpu_taken and
+        cpu_full (CPU seconds).
+    """
     jac, Z, period, rhs, rows = call
     M = Z.shape[0]
 
@@ -75,8 +101,23 @@ def pass_rows(label: str, call: tuple, repeats: int) -> dict:
             "cpu_taken": cpu_taken, "cpu_full": cpu_full}  # fmt: skip
 
 
-def step_table(scenes=SCENES, repeats: int = 3) -> pd.DataFrame:
-    """One row per Floquet pass of each benchmark scene (module docstring)."""
+def step_table(
+    scenes: tuple[tuple[str, float, float], ...] = SCENES, repeats: int = 3
+) -> pd.DataFrame:
+    """One row per Floquet pass of each benchmark scene, solved with the workflow's numerics.
+
+    Parameters
+    ----------
+    scenes : tuple of (str, float, float)
+        (label, Omega_0 [rad/s], f_d [Hz]) of each scene, on the reference beam.
+    repeats : int
+        Runs of each step count; the fastest is timed.
+
+    Returns
+    -------
+    pandas.DataFrame
+        The `pass_rows` of every pass.
+    """
     out = []
     for label, omega0, f_d in scenes:
         scene = Scene(Beam(), Drive(omega0=omega0, f_d=f_d), Effects(), WORKFLOW_NUMERICS)
@@ -87,7 +128,26 @@ def step_table(scenes=SCENES, repeats: int = 3) -> pd.DataFrame:
 
 
 def column_table(column: str, config_path: str = "config/config.yaml") -> pd.DataFrame:
-    """One row per Floquet pass of a Fig. 7 grid column, as `sweep_grid_column` runs it."""
+    """One row per Floquet pass of a Fig. 7 grid column, as `sweep_grid_column` runs it.
+
+    Parameters
+    ----------
+    column : str
+        The column id, e.g. "E100000_L0.01" (`rotbeam.paper.studies.grid_columns`).
+    config_path : str
+        The workflow config whose fig7 beams, c_max lines, amplitude, numerics and effects
+        are used.
+
+    Returns
+    -------
+    pandas.DataFrame
+        The `pass_rows` of every pass, one repeat each.
+
+    Raises
+    ------
+    RotbeamInputError
+        When the config file does not exist or the column is not one of its grid.
+    """
     from ..config.scenefile import load_yaml
     from ..runs.sweeps import numerics_from_config
     from .studies import fig7_beams, grid_columns, run_grid_lines
@@ -124,6 +184,14 @@ def _table(args: list[str]) -> pd.DataFrame:
 
 
 def main(argv: list[str] | None = None) -> None:
+    """The command line: print the table and a summary of what the step counts cost and buy.
+
+    Parameters
+    ----------
+    argv : list of str or None
+        ``[repeats]`` or ``--column <id> [config]``; None: the process's arguments.  A bad
+        argument exits with one line naming it.
+    """
     args = sys.argv[1:] if argv is None else argv
     try:
         df = _table(args)

@@ -1,16 +1,8 @@
 """Hypotheses for the paper's numbers that this model does not reproduce, computed, not argued.
 
 Each study returns a detail table and a long table of (claim, hypothesis, value, note) rows that
-`rotbeam.paper.claims.judge` holds against the printed value.
-
-f_n and zeta scale with the printed inputs as (b cancels in f_n; A = b h, I = b h^3/12)
-
-    f_n  = beta_1^2 / (2 pi) sqrt(E I / (rho A L^4))  ~  beta_1^2 h E^(1/2) rho^(-1/2) L^(-2)
-    zeta = gamma L^2 / (2 beta_1^2 sqrt(E I rho A))   ~  gamma L^2 b^(-1) h^(-2) E^(-1/2)
-                                                          rho^(-1/2) beta_1^(-2)
-
-so one input p moves (ln f_n, ln zeta) along a fixed direction (a_f, a_z); a single change gives
-both printed values only if ln(f_paper/f) / ln(zeta_paper/zeta) = a_f / a_z.
+`rotbeam.paper.claims.judge` holds against the printed value.  How f_n and zeta scale with the
+printed inputs, and why one changed input cannot give both: docs/reproduction.md.
 """
 
 from __future__ import annotations
@@ -28,11 +20,27 @@ EXPONENTS = {
     "E": (0.5, -0.5), "L": (-2.0, 2.0), "h": (1.0, -2.0), "b": (0.0, -1.0),
     "rho": (-0.5, -0.5), "gamma": (0.0, 1.0), "beta1": (2.0, -2.0),
 }  # fmt: skip
+#: the `Beam` field of each printed input
 SI_TO_BEAM = {"E": "E", "L": "L", "h": "h", "b": "b", "rho": "rho", "gamma": "gamma"}
 
 
 def fn_zeta(beam: Beam, beta1: float = BETA1) -> tuple[float, float]:
-    """(f_n [Hz], zeta) of a beam with modal constant beta1 (Table systems, cantilever row)."""
+    """f_n and zeta of a beam with a given modal constant (Table systems, cantilever row).
+
+    Parameters
+    ----------
+    beam : Beam
+        The beam (SI).
+    beta1 : float
+        The first cantilever eigenvalue beta_1 (dimensionless); default the exact one.
+
+    Returns
+    -------
+    f_n : float
+        First natural frequency [Hz].
+    zeta : float
+        Damping ratio (dimensionless).
+    """
     scale = (beta1 / BETA1) ** 2
     return beam.f_n * scale, beam.zeta / scale
 
@@ -48,10 +56,36 @@ def _changed(beam: Beam, name: str, value: float) -> tuple[float, float]:
     return fn_zeta(b)
 
 
-def single_change_study(beam: Beam, inputs: dict, f_paper: float, zeta_paper: float):
-    """For each printed input: the value that gives f_paper (and the zeta it then gives) and the
-    value that gives zeta_paper (and its f_n); whether each lies within the input's printed
-    precision.  Returns (detail table, long hypothesis table)."""
+def single_change_study(
+    beam: Beam, inputs: dict, f_paper: float, zeta_paper: float
+) -> tuple[pd.DataFrame, pd.DataFrame]:
+    """One printed input changed at a time, to give the printed f_n or the printed zeta.
+
+    For each input of `EXPONENTS`: the value that gives f_paper (and the zeta it then gives)
+    and the value that gives zeta_paper (and its f_n), and whether each lies within the input's
+    printed precision.  A hypothesis counts only when it does.
+
+    Parameters
+    ----------
+    beam : Beam
+        Our beam (SI).
+    inputs : dict
+        The printed inputs by name ({"paper": value, "tolerance": its precision, "kind": the
+        precision's kind}, in the units of `Beam`); an input missing here has no precision.
+    f_paper : float
+        The printed f_n [Hz].
+    zeta_paper : float
+        The printed zeta (dimensionless).
+
+    Returns
+    -------
+    detail : pandas.DataFrame
+        One row per (target, input): printed, precision, needed value, within_precision, the
+        f_n and zeta it gives, and whether it gives both.
+    long : pandas.DataFrame
+        The long hypothesis table for the claims f_n_hz and zeta (NaN value outside the
+        precision).
+    """
     f0, z0 = fn_zeta(beam)
     base = {**{k: getattr(beam, v) for k, v in SI_TO_BEAM.items()}, "beta1": BETA1}
     rows, hyp = [], []
@@ -86,7 +120,26 @@ def single_change_study(beam: Beam, inputs: dict, f_paper: float, zeta_paper: fl
 
 
 def pair_changes(beam: Beam, inputs: dict, f_paper: float, zeta_paper: float) -> list[dict]:
-    """Two changes: one input for f_n, then gamma (which leaves f_n alone) for zeta."""
+    """Two changes: one input for f_n, then gamma (which leaves f_n alone) for zeta.
+
+    Parameters
+    ----------
+    beam : Beam
+        Our beam (SI).
+    inputs : dict
+        The printed inputs by name, as in `single_change_study`; must hold ``gamma``.
+    f_paper : float
+        The printed f_n [Hz].
+    zeta_paper : float
+        The printed zeta (dimensionless).
+
+    Returns
+    -------
+    list of dict
+        One per input that moves f_n: ``input``, ``needed`` (its value for f_paper), ``gamma``
+        (for zeta_paper) [N s/m^2], ``within`` (both within their printed precision),
+        ``f_n_hz`` and ``zeta``.
+    """
     f0, _ = fn_zeta(beam)
     g_in = inputs["gamma"]
     out = []
@@ -109,8 +162,21 @@ def pair_changes(beam: Beam, inputs: dict, f_paper: float, zeta_paper: float) ->
 
 
 def euler_readings(beam: Beam) -> dict[str, tuple[float, str]]:
-    """Factor k by which each reading of the printed Euler number multiplies ours (E = G dOmega/dt,
-    Eq. max E num), and what it is."""
+    """The readings of the printed Euler number, each as a factor on ours.
+
+    Ours is E = G dOmega/dt (Eq. max E num); a reading multiplies it by a factor k.
+
+    Parameters
+    ----------
+    beam : Beam
+        The beam (SI): f_s, T, f_n, G and delta enter the factors.
+
+    Returns
+    -------
+    dict
+        {reading: (k, what it is)}; k is dimensionless or, for the readings that carry a
+        frequency, in 1/s.
+    """
     f_s, e_n = beam.f_s, beam.G * 2.0 * math.pi * beam.f_n
     return {
         "Eq. (max E num): E = G a 2 pi f_d (ours)": (1.0, "G dOmega/dt, dimensionless"),
@@ -131,7 +197,23 @@ def _loglog_at(x: np.ndarray, y: np.ndarray, x0: float) -> float:
 
 
 def plateau(boundary: pd.DataFrame, column: str = "E_star_root", c_max_top: float = 10.0) -> float:
-    """Median of `column` over lines with C_max <= c_max_top (the lowest line if none)."""
+    """The plateau of a boundary quantity at low C_max: its median over the lowest lines.
+
+    Parameters
+    ----------
+    boundary : pandas.DataFrame
+        Boundary rows (C_max and `column`).
+    column : str
+        The quantity, e.g. "E_star_root".
+    c_max_top : float
+        Lines with C_max up to this (dimensionless) make the plateau.
+
+    Returns
+    -------
+    float
+        The median over the finite values with C_max <= c_max_top, or the value of the lowest
+        line when none is that low; NaN with no finite value.
+    """
     b = boundary[np.isfinite(boundary[column])]
     low = b[b["C_max"] <= c_max_top]
     if low.empty:
@@ -143,10 +225,42 @@ def estar_study(
     boundary: pd.DataFrame, beam: Beam, threshold: float, c_paper: float, f_n_paper: float,
     c_max_fig5: float, e_fig5: tuple[float, float], line50: pd.DataFrame | None,
     amplitude: float = 1.0,
-):  # fmt: skip
-    """Per reading: E* on the plateau, E* at C_max = c_max_fig5, whether Fig. 5b,c then holds
-    (e_fig5[0] dynamic, e_fig5[1] quasi-static), and Delta RMS of the full model at the drive
-    frequency the reading gives each Fig. 5 point (from the C_max = c_max_fig5 sweep line)."""
+) -> tuple[pd.DataFrame, pd.DataFrame]:  # fmt: skip
+    """The "E* ~ 5" plateau under each reading of the Euler number (`euler_readings`).
+
+    Per reading: E* on the plateau, E* at C_max = c_max_fig5, whether Fig. 5b,c then holds
+    (e_fig5[0] dynamic, e_fig5[1] quasi-static: c_max_fig5's E* between them), and Delta RMS of
+    the full model at the drive frequency the reading gives each Fig. 5 point (from the sweep
+    line at c_max_fig5).  A last row gives E* from the paper's own c and f_n.
+
+    Parameters
+    ----------
+    boundary : pandas.DataFrame
+        The reference beam's boundary table (threshold, C_max, E_star_root).
+    beam : Beam
+        The reference beam (SI).
+    threshold : float
+        The Delta RMS threshold of the boundary read.
+    c_paper : float
+        The paper's c (dimensionless).
+    f_n_paper : float
+        The paper's f_n [Hz].
+    c_max_fig5 : float
+        Fig. 5's C_max (dimensionless).
+    e_fig5 : tuple of float
+        Fig. 5's two E_max (dimensionless): the dynamic point, then the quasi-static one.
+    line50 : pandas.DataFrame or None
+        The sweep line at c_max_fig5 (f_d, delta_rms); None: no Delta RMS.
+    amplitude : float
+        Drive amplitude a [rad/s].
+
+    Returns
+    -------
+    detail : pandas.DataFrame
+        One row per reading.
+    long : pandas.DataFrame
+        The long hypothesis table for E_star_plateau, fig5_50_2 and fig5_50_1.
+    """
     b = boundary[np.isclose(boundary["threshold"], threshold)].sort_values("C_max")
     e_ours = plateau(b)
     e50 = _loglog_at(b["C_max"].to_numpy(float), b["E_star_root"].to_numpy(float), c_max_fig5)
@@ -191,7 +305,22 @@ def _delta_rms_at(line: pd.DataFrame | None, f_d: float) -> float:
 
 
 def figD9_bound(c: float, c_max: float, deltas: np.ndarray) -> pd.DataFrame:
-    """S_1 delta and the Eq. (scaled_analytical_sol) value of E*/E_n at c_max over delta."""
+    """The largest E*/E_n Eq. (scaled_analytical_sol) allows at one C_max, over delta = L/R.
+
+    Parameters
+    ----------
+    c : float
+        The constant c (dimensionless).
+    c_max : float
+        The C_max (dimensionless).
+    deltas : numpy.ndarray
+        Values of delta = L/R in (0, 1).
+
+    Returns
+    -------
+    pandas.DataFrame
+        Columns delta, S1_delta and E_scaled_at_C<c_max>.
+    """
     from .collapse import scaled_bound, southwell_delta
 
     return pd.DataFrame({
@@ -206,10 +335,36 @@ def figD9_bound(c: float, c_max: float, deltas: np.ndarray) -> pd.DataFrame:
 def fig7_variant_study(
     lines: dict[str, pd.DataFrame], beams: dict[str, dict[str, dict]], c_ref: float,
     threshold: float, within: float,
-):  # fmt: skip
-    """Per (damping, geometry) hypothesis: boundary of its grid from its sweep lines, how many
-    beams collapse on c_ref sqrt(1 + x) within `within`, and c fitted over its beams.  Returns
-    (table, long hypothesis table, per-hypothesis boundary tables)."""
+) -> tuple[pd.DataFrame, pd.DataFrame, dict[str, pd.DataFrame]]:  # fmt: skip
+    """Fig. 7's collapse and c for each (damping, geometry) hypothesis of the grid.
+
+    Per hypothesis: the boundary of its grid from its sweep lines, how many beams collapse on
+    c_ref sqrt(1 + x) within `within` (`rotbeam.paper.collapse.collapse_by_beam`), and c
+    fitted over its beams.
+
+    Parameters
+    ----------
+    lines : dict
+        {tag "<damping>-<geometry>": the sweep lines of its grid (column beam, omega0, ...)}.
+    beams : dict
+        {tag: {beam id: the beam's fields (SI)}}.
+    c_ref : float
+        The reference beam's c (dimensionless).
+    threshold : float
+        The Delta RMS threshold.
+    within : float
+        Largest relative deviation from c_ref sqrt(1 + x) of a collapsing beam.
+
+    Returns
+    -------
+    table : pandas.DataFrame
+        One row per hypothesis: beams, beams collapsed, fraction, worst deviation, zeta range,
+        c fitted, lines with a crossing.
+    long : pandas.DataFrame
+        The long hypothesis table for the claims fig7_collapse and c_fig7.
+    boundaries : dict
+        {tag: the boundary table of its grid}.
+    """
     from ..analysis.boundary import boundary_table, fit_c
     from .collapse import collapse_by_beam
 
@@ -241,11 +396,36 @@ def fig7_variant_study(
     return pd.DataFrame(rows), pd.DataFrame(hyp), tables
 
 
-def fn_zeta_study(beam: Beam, inputs: dict, f_paper: float, zeta_paper: float, N: int):
-    """The single-change table plus readings that change no input (the discrete model's first
-    frequency at the paper's N, beta_1 = 1.875 as printed, zeta = gamma / (2 rho A omega_n) with
-    the printed f_n) and the pairs (one input for f_n, gamma for zeta).  Returns (table, long
-    table)."""
+def fn_zeta_study(
+    beam: Beam, inputs: dict, f_paper: float, zeta_paper: float, N: int
+) -> tuple[pd.DataFrame, pd.DataFrame]:
+    """Every hypothesis for the printed f_n and zeta.
+
+    The single changes (`single_change_study`), readings that change no input (the discrete
+    model's first frequency at the paper's N, beta_1 = 1.875 as printed, zeta = gamma / (2 rho A
+    omega_n) with the printed f_n) and the pairs (`pair_changes`: one input for f_n, gamma for
+    zeta).
+
+    Parameters
+    ----------
+    beam : Beam
+        Our beam (SI).
+    inputs : dict
+        The printed inputs by name, as in `single_change_study`.
+    f_paper : float
+        The printed f_n [Hz].
+    zeta_paper : float
+        The printed zeta (dimensionless).
+    N : int
+        The paper's grid intervals.
+
+    Returns
+    -------
+    detail : pandas.DataFrame
+        The single-change rows, the discrete model's f_n and the pairs.
+    long : pandas.DataFrame
+        The long hypothesis table for the claims f_n_hz and zeta.
+    """
     from ..model.modes import modes
 
     table, long = single_change_study(beam, inputs, f_paper, zeta_paper)
@@ -275,10 +455,30 @@ def fn_zeta_study(beam: Beam, inputs: dict, f_paper: float, zeta_paper: float, N
 
 def figD9_study(
     grid: pd.DataFrame, c_values: list[float], window: dict, deltas: np.ndarray
-):  # fmt: skip
-    """Bound of Eq. (scaled_analytical_sol) over delta at the window's largest C_max with the
-    largest c given (ours and printed, every threshold), and the readings of the window:
-    (bound table, long table)."""
+) -> tuple[pd.DataFrame, pd.DataFrame]:  # fmt: skip
+    """The window Fig. D.9 magnifies, against what Eq. (scaled_analytical_sol) allows.
+
+    The bound is taken over delta at the window's largest C_max with the largest c given.
+
+    Parameters
+    ----------
+    grid : pandas.DataFrame
+        Boundary rows of the Fig. 7 grid (h_over_L, C_max, E_star_root).
+    c_values : list of float
+        Candidate c (ours and printed, every threshold); the largest finite one is used.
+    window : dict
+        ``C_max`` (lowest, highest), ``E_scaled`` (lowest, highest) and ``h_over_L``.
+    deltas : numpy.ndarray
+        Values of delta = L/R in (0, 1).
+
+    Returns
+    -------
+    bound : pandas.DataFrame
+        `figD9_bound` at the window's largest C_max.
+    long : pandas.DataFrame
+        The long hypothesis table for figD9_range: the largest bound, and the reading that
+        panel (b) plots E* rather than E*/E_n.
+    """
     c_hi = float(np.nanmax(np.asarray(c_values, float)))
     (c_lo, c_max), e_lo = window["C_max"], window["E_scaled"][0]
     bound = figD9_bound(c_hi, float(c_max), deltas)

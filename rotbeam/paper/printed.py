@@ -16,6 +16,7 @@ import pandas as pd
 from ..config.errors import RotbeamInputError
 from ..config.scenefile import load_yaml
 
+#: the kinds of tolerance a claim can have, and how the claims table words each
 KINDS = {
     "stated": "the paper's stated uncertainty",
     "rounding": "the printed rounding",
@@ -27,7 +28,28 @@ KINDS = {
 
 
 def load_claims(data: dict[str, Any]) -> tuple[dict[str, dict], pd.DataFrame]:
-    """(printed inputs, claims table) from the parsed paper_claims.yaml; checks every row."""
+    """The printed inputs and the claims table of a parsed paper_claims.yaml, every row checked.
+
+    Parameters
+    ----------
+    data : dict
+        The parsed file: ``claims``, a list of rows each with id, source, paper (the printed
+        value), unit, tolerance and kind (and optionally ``at``, where it is evaluated), and
+        ``inputs``, the printed inputs by name.
+
+    Returns
+    -------
+    inputs : dict
+        The printed inputs, by name.
+    claims : pandas.DataFrame
+        One row per claim, in file order.
+
+    Raises
+    ------
+    RotbeamInputError
+        When a row lacks a field, its kind is not one of `KINDS`, its tolerance is not a
+        number >= 0, or two rows share an id.
+    """
     rows = data.get("claims") or []
     need = ("id", "source", "paper", "unit", "tolerance", "kind")
     for i, r in enumerate(rows):
@@ -52,12 +74,12 @@ CLAIMS_FILE = Path(__file__).with_name("paper_claims.yaml")
 
 
 def read_claims(path: str | Path = CLAIMS_FILE) -> tuple[dict[str, dict], pd.DataFrame]:
-    """`load_claims` of the file at `path` (default: the packaged paper_claims.yaml).
+    """The printed inputs and the claims table of a claims file (`load_claims`).
 
     Parameters
     ----------
     path : str or Path
-        A claims file.
+        A claims file; default the packaged paper_claims.yaml.
 
     Returns
     -------
@@ -65,12 +87,31 @@ def read_claims(path: str | Path = CLAIMS_FILE) -> tuple[dict[str, dict], pd.Dat
         The printed inputs, by name.
     claims : pandas.DataFrame
         One row per claim.
+
+    Raises
+    ------
+    RotbeamInputError
+        When a row of the file is malformed (`load_claims`).
     """
     return load_claims(load_yaml(Path(path).read_text()))
 
 
 def printed_per_threshold(claims: pd.DataFrame, prefix: str) -> dict[float, float]:
-    """Printed values whose id is `prefix` + a threshold ("c_0.10", "c0_0.02") by threshold."""
+    """The printed values whose id is a prefix followed by a threshold, by threshold.
+
+    Parameters
+    ----------
+    claims : pandas.DataFrame
+        The claims table (`read_claims`).
+    prefix : str
+        The ids' prefix: "c_" for "c_0.10", "c0_" for "c0_0.02".
+
+    Returns
+    -------
+    dict
+        {threshold rounded to 4 decimals: printed value}; ids whose rest is not a number (such
+        as "c0_small_zeta") are left out.
+    """
     out = {}
     for cid, value in zip(claims["id"], claims["paper"], strict=True):
         rest = str(cid)[len(prefix) :] if str(cid).startswith(prefix) else ""

@@ -1,25 +1,9 @@
-r"""The discrete model of Appendix A *as printed*, misprint by misprint, beside our re-derivation.
+"""The discrete model of Appendix A *as printed*, misprint by misprint, beside our re-derivation.
 
 `PrintedElastica` subclasses `rotbeam.model.elastica.DiscreteElastica` and switches on, one at a
-time or together, what the printed appendix has where `rotbeam.model.elastica` departs from it:
-
-* ``bracket``: the first bracket of Eqs. (Disc_tension_x/y), 1 + (delta - 1) s - delta s^2/4,
-  taken literally.  As printed, n_x = C [bracket] + U L delta C c~ + ..., i.e. (units of
-  `rotbeam.model.params`, C = lam^2 / delta) the centrifugal tension is lam^2 [bracket] / delta +
-  lam^2 Q P cos(Theta), where the integral of lam^2 (r_o + x) is lam^2 [r_o (1 - s) +
-  Q (ds/2 + P cos Theta)].  The difference is an extra tension lam^2 e(s) with
-  e(s) = (1 - s^2/4) - (ds/2)(1 - s) (nonzero at the free end, where n must vanish); the Euler
-  bracket of n_y adds the same e(s) times -lam_t.  Both enter the load torque.
-* ``U3``: the last column of 3s in U (the tip node's value g_N replaced by g_{N-1}).
-* ``symS``: the velocity-squared matrix W o S~ with the printed *symmetric* S~,
-  S~_ij = sin(theta_max(i,j) - theta_min(i,j)), where the derivation gives the antisymmetric
-  W_ij sin(theta_i - theta_j).
-* ``Kds``: K with 1/ds instead of 1/ds^2 (bending stiffness divided by N).
-
-The fourth printed slip, +2 I y_t in the n_y integrand of Eq. (NumT), only acts with Coriolis on
-(the paper switches Coriolis off): see `rotbeam.paper.c_hypotheses` ("printed_ny_coriolis").
-
-Every solver takes such a model as it takes ours (`rotbeam.model.base.DiscreteModel`).
+time or together, what the printed appendix has where ours departs from it (`MISPRINTS`).  Every
+solver takes such a model as it takes ours.  The misprints and what each does to the equations:
+docs/reproduction.md.
 """
 
 from __future__ import annotations
@@ -32,11 +16,12 @@ from ..config.errors import RotbeamInputError
 from ..model.elastica import DiscreteElastica
 from ..model.params import Dimensionless
 
+#: the printed appendix's misprints a model can switch on
 MISPRINTS = ("bracket", "U3", "symS", "Kds")
 
 
 class PrintedElastica(DiscreteElastica):
-    """`DiscreteElastica` with the printed appendix's misprints in `misprints` switched on.
+    """`DiscreteElastica` with some of the printed appendix's misprints switched on.
 
     Parameters
     ----------
@@ -45,7 +30,13 @@ class PrintedElastica(DiscreteElastica):
     N : int
         Grid intervals.
     misprints : tuple of str
-        Any of MISPRINTS.
+        Any of `MISPRINTS`: "bracket" (the printed tension bracket), "U3" (the last column of
+        3s in U), "symS" (the symmetric velocity-squared matrix), "Kds" (K with 1/ds).
+
+    Raises
+    ------
+    RotbeamInputError
+        For a misprint not in `MISPRINTS`.
 
     Notes
     -----
@@ -77,12 +68,40 @@ class PrintedElastica(DiscreteElastica):
             self.extra = np.zeros(self.n)
 
     def at(self, dl: Dimensionless) -> PrintedElastica:
-        """The same printed variant for the scene `dl`."""
+        """The same printed variant for another scene.
+
+        Parameters
+        ----------
+        dl : Dimensionless
+            The scene.
+
+        Returns
+        -------
+        PrintedElastica
+            The model of `dl` on the same grid, with the same misprints.
+        """
         return PrintedElastica(dl, self.N, self.misprints)
 
     # the printed bracket adds lam^2 e to n_x and -lam_t e to n_y: torque s n_x - c n_y
-    def load_torque_rows(self, theta, lam, lam_dot, jacobian=False):
-        """`DiscreteElastica.load_torque_rows` with the printed bracket's extra tension."""
+    def load_torque_rows(
+        self, theta: np.ndarray, lam: np.ndarray, lam_dot: np.ndarray, jacobian: bool = False
+    ) -> np.ndarray | tuple[np.ndarray, np.ndarray]:
+        """`DiscreteElastica.load_torque_rows` with the printed bracket's extra tension.
+
+        Parameters
+        ----------
+        theta : numpy.ndarray
+            Angles, shape (m, n).
+        lam, lam_dot : numpy.ndarray
+            Rotation rate Omega T and its rate of change at the m instants, shape (m,).
+        jacobian : bool
+            Also return dL/dTheta.
+
+        Returns
+        -------
+        numpy.ndarray or tuple
+            L, shape (m, n); with `jacobian`, (L, dL/dTheta of shape (m, n, n)).
+        """
         out = super().load_torque_rows(theta, lam, lam_dot, jacobian=jacobian)
         if "bracket" not in self.misprints:
             return out
@@ -101,7 +120,20 @@ class PrintedElastica(DiscreteElastica):
         return torque + s * ex - c * ey, J
 
     def velocity_matrix_rows(self, theta: np.ndarray, B: np.ndarray) -> np.ndarray:
-        """The matrix multiplying Theta_t^2: the printed symmetric W o S~ with ``symS``, else B."""
+        """The matrix multiplying Theta_t^2: the printed symmetric W o S~ with ``symS``, else B.
+
+        Parameters
+        ----------
+        theta : numpy.ndarray
+            Angles, shape (m, n).
+        B : numpy.ndarray
+            The derivation's antisymmetric matrix W_ij sin(theta_i - theta_j), shape (m, n, n).
+
+        Returns
+        -------
+        numpy.ndarray
+            Shape (m, n, n).
+        """
         if "symS" not in self.misprints:
             return B
         d = theta[:, None, :] - theta[:, :, None]  # theta_j - theta_i

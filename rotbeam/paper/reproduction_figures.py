@@ -23,8 +23,24 @@ def fig7_variants(
     variants: dict[str, pd.DataFrame], c: float, threshold: float, tolerance: float,
     pdf: str, png: str,
 ) -> None:  # fmt: skip
-    """One panel per (damping, geometry) hypothesis: E*/E_n against x = S_1 G a^2 C_max / E_n^2
-    with c sqrt(1 + x) and its +- tolerance band; beams that do not collapse drawn open."""
+    """Fig. 7b for each (damping, geometry) hypothesis of the grid, one panel each.
+
+    E*/E_n against x = S_1 G a^2 C_max / E_n^2, with c sqrt(1 + x) and its +- tolerance band;
+    beams that do not collapse are drawn dashed, with open markers.
+
+    Parameters
+    ----------
+    variants : dict
+        {tag: the boundary table of its grid} (`rotbeam.paper.hypotheses.fig7_variant_study`).
+    c : float
+        The constant c (dimensionless).
+    threshold : float
+        The Delta RMS threshold whose rows are drawn.
+    tolerance : float
+        Largest relative deviation of a collapsing beam, drawn as a band.
+    pdf, png : str
+        Paths the figure is written to.
+    """
     tags = sorted(variants)
     ncol = min(3, len(tags))
     nrow = math.ceil(len(tags) / ncol)
@@ -65,9 +81,25 @@ def _short(beam_id: str, tag: str) -> str:
 def figD9_window(
     grid: pd.DataFrame, bound: pd.DataFrame, window: dict, c_max_bound: float, pdf: str, png: str
 ) -> None:
-    """(a) E*/E_n vs C_max of the grid beams of one h/L for every threshold; (b) the window the
-    paper magnifies; (c) the largest E*/E_n Eq. (scaled_analytical_sol) allows at c_max_bound,
-    over delta = L/R."""
+    """Fig. D.9 as the paper describes it, and the bound on E*/E_n.
+
+    (a) E*/E_n against C_max of the grid beams of one h/L for every threshold; (b) the window
+    the paper magnifies; (c) the largest E*/E_n Eq. (scaled_analytical_sol) allows at
+    c_max_bound, over delta = L/R.
+
+    Parameters
+    ----------
+    grid : pandas.DataFrame
+        Boundary rows of the grid beams of one h/L (threshold, beam, C_max, E_star_root, E_n).
+    bound : pandas.DataFrame
+        `rotbeam.paper.hypotheses.figD9_bound`.
+    window : dict
+        ``C_max`` and ``E_scaled`` (lowest, highest each) and ``h_over_L``.
+    c_max_bound : float
+        The C_max of the bound (dimensionless).
+    pdf, png : str
+        Paths the figure is written to.
+    """
     fig, (a, b, cax) = figure(1, 3, width=12.0, height=3.8)
     markers = ">", "<", "^", "v", "o", "s", "D"
     for k, (th, sub) in enumerate(grid.groupby("threshold")):

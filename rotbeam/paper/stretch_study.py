@@ -1,12 +1,8 @@
 """What axial stretching (effect `extension`, off in the paper) does on the Fig. 5 lines.
 
-For each reference boundary line C_max (config `boundary.c_max`, Omega_0 = sqrt(C_max / G) - a)
-the clamp strain N/(EA) at s = 0, in closed form (`rotbeam.model.elastica.centrifugal_strain` at
-the rotation the model freezes the stretch at, `Dimensionless.lam_stretch`). On the lines the
-study names (config `reproduction.stretch.c_max`): f_d* by root finding (`critical`)
-with stretching off and on, and RMS(y_m) and Delta RMS at the inextensible f_d* with it off and
-on. `inextensible_limit` interpolates the C_max above which stretching moves f_d* by more than a
-given fraction (1 % in the claims): where the paper's inextensible model stops holding.
+`stretch_study` tables every line's clamp strain and, on the lines it studies, f_d*, RMS(y_m)
+and Delta RMS with stretching off and on; `inextensible_limit` gives the C_max above which the
+paper's inextensible model stops holding.  The study and its two claims: docs/reproduction.md.
 """
 
 from __future__ import annotations
@@ -24,14 +20,33 @@ from ..model.params import Beam, Dimensionless, Drive, Effects, omega0_for_cmax
 from ..runs.scene import Scene, simulate
 from ..solve.numerics import Numerics
 
+#: the columns of the study's table
 COLUMNS = ["C_max", "omega0", "clamp_strain", "studied", "f_d_star_off", "f_d_star_on",
            "f_d_star_change", "rms_off", "rms_on", "rms_change", "delta_off", "delta_on",
            "delta_change", "seconds"]  # fmt: skip
 
 
 def clamp_strain(beam: Beam, omega0: float, amplitude: float) -> float:
-    """N/(EA) at the clamp of the straight beam at the stretch rotation of the model (exact in
-    the strain; rho Omega^2 L^2 (R_o/L + 1/2) / E to first order)."""
+    """The axial strain N/(EA) at the clamp of the straight beam, in closed form.
+
+    It is taken at the rotation the model freezes the stretch at (`Dimensionless.lam_stretch`):
+    exact in the strain (`rotbeam.model.grid.centrifugal_strain`), rho Omega^2 L^2 (R_o/L + 1/2)
+    / E to first order.
+
+    Parameters
+    ----------
+    beam : Beam
+        The beam (SI).
+    omega0 : float
+        Mean rotation rate Omega_0 [rad/s].
+    amplitude : float
+        Drive amplitude a [rad/s].
+
+    Returns
+    -------
+    float
+        The strain (dimensionless).
+    """
     on = Effects(extension=True)
     dl = Dimensionless.from_physical(beam, Drive(omega0=omega0, f_d=1.0, amplitude=amplitude), on)
     return float(centrifugal_strain(0.0, dl.hub_ratio, dl.kappa, dl.lam_stretch))
@@ -39,7 +54,35 @@ def clamp_strain(beam: Beam, omega0: float, amplitude: float) -> float:
 
 def stretch_line(beam: Beam, c_max: float, amplitude: float, threshold: float, effects: Effects,
                  numerics: Numerics, rtol: float = 1e-3) -> dict[str, float]:  # fmt: skip
-    """One studied line: f_d* off and on, RMS and Delta RMS off and on at the f_d* of `off`."""
+    """One studied line: f_d* with stretching off and on, and the response at the first.
+
+    f_d* comes from root finding (`rotbeam.analysis.verdict.critical`); RMS(y_m) and Delta RMS
+    off and on are taken at the inextensible f_d*.
+
+    Parameters
+    ----------
+    beam : Beam
+        The beam (SI).
+    c_max : float
+        The line's C_max (dimensionless); Omega_0 = sqrt(C_max / G) - a.
+    amplitude : float
+        Drive amplitude a [rad/s].
+    threshold : float
+        The Delta RMS threshold.
+    effects : Effects
+        The other effects; ``extension`` is switched off and on.
+    numerics : Numerics
+        The solver settings.
+    rtol : float
+        Relative tolerance of the root finding.
+
+    Returns
+    -------
+    dict
+        f_d_star_off and f_d_star_on [Hz], rms_off and rms_on (units of L), delta_off and
+        delta_on, f_d_star_change and rms_change (relative), delta_change (difference) and
+        seconds (wall time).
+    """
     t0 = time.perf_counter()
     w0 = omega0_for_cmax(beam, c_max, amplitude)
     off, on = replace(effects, extension=False), replace(effects, extension=True)
@@ -65,8 +108,34 @@ def stretch_line(beam: Beam, c_max: float, amplitude: float, threshold: float, e
 def stretch_study(beam: Beam, c_max: list[float], studied: list[float], amplitude: float,
                   threshold: float, effects: Effects, numerics: Numerics,
                   rtol: float = 1e-3) -> pd.DataFrame:  # fmt: skip
-    """The table: every line's clamp strain; f_d*, RMS and Delta RMS off and on where studied
-    (NaN elsewhere). Studied C_max need not be among the lines; they are added."""
+    """The study's table: every line's clamp strain, and stretching off and on where studied.
+
+    Parameters
+    ----------
+    beam : Beam
+        The beam (SI).
+    c_max : list of float
+        The lines' C_max (config ``boundary.c_max``).
+    studied : list of float
+        The C_max studied with stretching off and on (config ``reproduction.stretch.c_max``);
+        they need not be among `c_max`: they are added.
+    amplitude : float
+        Drive amplitude a [rad/s].
+    threshold : float
+        The Delta RMS threshold.
+    effects : Effects
+        The other effects.
+    numerics : Numerics
+        The solver settings.
+    rtol : float
+        Relative tolerance of the root finding.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per C_max, ascending, columns `COLUMNS`; the `stretch_line` columns are NaN
+        on the lines not studied.
+    """
     rows = []
     for c in sorted(set(map(float, c_max)) | set(map(float, studied))):
         w0 = omega0_for_cmax(beam, c, amplitude)
@@ -80,9 +149,23 @@ def stretch_study(beam: Beam, c_max: list[float], studied: list[float], amplitud
 
 
 def inextensible_limit(table: pd.DataFrame, within: float = 0.01) -> float:
-    """The C_max above which stretching moves f_d* by more than `within` (relative): log-log
-    interpolation of |f_d* change| between studied lines (it grows like the strain, ~C_max);
-    inf when no studied line reaches it, the smallest studied C_max when the first already does.
+    """The C_max above which stretching moves f_d* by more than a given fraction.
+
+    |f_d* change| is interpolated log-log between the studied lines (it grows like the strain,
+    ~C_max).
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        The study's table (`stretch_study`).
+    within : float
+        The relative change of f_d* (dimensionless) that marks the limit; 0.01 in the claims.
+
+    Returns
+    -------
+    float
+        That C_max (dimensionless): inf when no studied line reaches it, the smallest studied
+        C_max when the first already does, NaN with no studied line.
     """
     t = table[table["studied"].astype(bool)].dropna(subset=["f_d_star_change"])
     t = t.sort_values("C_max")

@@ -28,10 +28,22 @@ from ..config.schema import (
 )
 from ..model.params import Beam, Effects, fd_for_emax, omega0_for_cmax
 
-REF = "ref"
+REF = "ref"  #: the beam id of the reference beam's lines
 
 
 def beam_id(beam: dict[str, float]) -> str:
+    """The readable id of a grid beam, from the values that define it.
+
+    Parameters
+    ----------
+    beam : dict
+        The beam's `Beam` fields (SI): E, L and h are read.
+
+    Returns
+    -------
+    str
+        "E<E>_L<L>_hL<h/L>", e.g. "E100000_L0.0001_hL0.05".
+    """
     return f"E{g(beam['E'])}_L{g(beam['L'])}_hL{g(beam['h'] / beam['L'])}"
 
 
@@ -43,12 +55,38 @@ def grid_beam(
     ref: dict[str, float], E: float, L: float, h_over_L: float,
     damping: str = "gamma", geometry: str = "R", zeta: float | None = None,
 ) -> dict[str, float]:  # fmt: skip
-    """One beam of a Fig. 7 grid: E, L, h = h_over_L L and b/h of the reference beam, plus
+    """One beam of a Fig. 7 grid: E, L, h = h_over_L L and the reference beam's b/h and rho.
 
-    damping  gamma: gamma of the reference beam; eta: gamma scaled so that eta (the damping of
-             the dimensionless equations) is the reference beam's; zeta: gamma scaled so that
-             zeta = eta / (2 beta_1^2) is `zeta` (default the reference beam's, then = eta)
-    geometry R: R of the reference beam; delta: R scaled with L so that L/R is the reference's.
+    Parameters
+    ----------
+    ref : dict
+        The reference beam's `Beam` fields (SI).
+    E : float
+        Young's modulus [Pa].
+    L : float
+        Length [m].
+    h_over_L : float
+        Slenderness h/L (dimensionless).
+    damping : str
+        What the beam keeps of the reference beam's damping: "gamma" (its gamma), "eta"
+        (gamma scaled so that eta, the damping of the dimensionless equations, is the
+        reference's) or "zeta" (gamma scaled so that zeta = eta / (2 beta_1^2) is `zeta`).
+    geometry : str
+        What it keeps of the reference beam's position: "R" (its R) or "delta" (R scaled with L
+        so that L/R is the reference's).
+    zeta : float or None
+        The damping ratio (dimensionless) of damping "zeta"; None: the reference beam's (which
+        then equals damping "eta").
+
+    Returns
+    -------
+    dict
+        The beam's `Beam` fields (SI).
+
+    Raises
+    ------
+    RotbeamInputError
+        For an unknown damping or geometry, or a beam `Beam` refuses.
     """
     if damping not in DAMPING:
         raise RotbeamInputError(f"damping = {damping!r}: must be one of {', '.join(DAMPING)}")
@@ -67,15 +105,43 @@ def grid_beam(
 
 
 def variant_tag(damping: str, geometry: str, zeta: float | None = None) -> str:
-    """'eta-delta', 'zeta0.017-R', ...: names a (damping, geometry) hypothesis."""
+    """The name of a (damping, geometry) hypothesis, e.g. "eta-delta" or "zeta0.017-R".
+
+    Parameters
+    ----------
+    damping : str
+        "gamma", "eta" or "zeta" (`grid_beam`).
+    geometry : str
+        "R" or "delta".
+    zeta : float or None
+        The damping ratio of damping "zeta", written into the name when given.
+
+    Returns
+    -------
+    str
+        "<damping>-<geometry>".
+    """
     d = f"zeta{g(zeta)}" if damping == "zeta" and zeta is not None else damping
     return f"{d}-{geometry}"
 
 
 def fig7_beams(config: dict[str, Any]) -> dict[str, dict[str, float]]:
-    """Grid of beams: E x L x h/L, keeping b/h and rho of the reference beam and its gamma or
-    eta or zeta (fig7.damping) and its R or L/R (fig7.geometry).  The ids of the default
-    (gamma, R) grid carry no tag; the others end in _<damping>-<geometry>."""
+    """The Fig. 7 grid of beams: E x L x h/L, each a `grid_beam` of the reference beam.
+
+    The beams keep b/h and rho of the reference beam, and its gamma or eta or zeta
+    (``fig7.damping``) and its R or L/R (``fig7.geometry``).
+
+    Parameters
+    ----------
+    config : dict
+        The workflow config (sections ``beam`` and ``fig7``).
+
+    Returns
+    -------
+    dict
+        {beam id: the beam's `Beam` fields (SI)}.  The ids of the default (gamma, R) grid carry
+        no tag; the others end in _<damping>-<geometry>.
+    """
     f7 = config["fig7"]
     damping, geometry = f7.get("damping", "gamma"), f7.get("geometry", "R")
     zeta = f7.get("zeta")
@@ -95,8 +161,19 @@ def _grid(ref, spec, damping, geometry, zeta, prefix, tag) -> dict[str, dict[str
 
 
 def repro_fig7_variants(config: dict[str, Any]) -> dict[str, dict[str, dict[str, float]]]:
-    """The damping x geometry hypotheses of the Fig. 7 study (reproduction.fig7): per tag, its
-    small grid of beams (ids prefixed 'r7_', so that they never meet the paper grid's files)."""
+    """The damping x geometry hypotheses of the Fig. 7 study, each with its small grid of beams.
+
+    Parameters
+    ----------
+    config : dict
+        The workflow config (sections ``beam`` and ``reproduction.fig7``).
+
+    Returns
+    -------
+    dict
+        {tag "<damping>-<geometry>": {beam id: the beam's `Beam` fields}}; the ids start with
+        "r7_", so that they never meet the paper grid's files.  Empty without the section.
+    """
     rc = config.get("reproduction", {}).get("fig7")
     if not rc:
         return {}
@@ -110,12 +187,35 @@ def repro_fig7_variants(config: dict[str, Any]) -> dict[str, dict[str, dict[str,
 
 
 def run_grid_lines(
-    beams: dict[str, dict[str, float]], spec: dict[str, Any], amplitude: float, effects, numerics,
-    log: Callable[[str], None] | None = None,
+    beams: dict[str, dict[str, float]], spec: dict[str, Any], amplitude: float, effects: Effects,
+    numerics, log: Callable[[str], None] | None = None,
 ) -> dict[str, list]:  # fmt: skip
-    """Every boundary line of a grid in this process (one job per (E, L) column of the grid or
-    per hypothesis instead of one per line: a job's start-up, ~1 s of imports, costs more than a
-    small line): per beam id, its line DataFrames (column `c_max_target` names the line)."""
+    """Every boundary line of a grid, run in this process.
+
+    The workflow runs one job per (E, L) column of the grid, or per hypothesis, instead of one
+    per line: a job's start-up, ~1 s of imports, costs more than a small line.
+
+    Parameters
+    ----------
+    beams : dict
+        {beam id: the beam's `Beam` fields (SI)}.
+    spec : dict
+        The grid's config section: ``c_max`` (the lines) and the scan ``lo``, ``hi``,
+        ``points`` (fractions of f_0).
+    amplitude : float
+        Drive amplitude a [rad/s].
+    effects : Effects
+        The model's effects.
+    numerics : Numerics
+        The solver settings.
+    log : callable or None
+        Receives progress messages.
+
+    Returns
+    -------
+    dict
+        {beam id: its lines' DataFrames (`run_line`), column ``c_max_target`` naming the line}.
+    """
     out = {}
     for bid, beam in beams.items():
         lines, _ = boundary_lines(beam, spec["c_max"], spec, amplitude)
@@ -127,11 +227,29 @@ def run_grid_lines(
     return out
 
 
-def run_line(spec: dict[str, Any], f_ds: list[float], effects, numerics,
+def run_line(spec: dict[str, Any], f_ds: list[float], effects: Effects, numerics,
              log: Callable[[str], None] | None = None):  # fmt: skip
-    """One sweep line (a spec of `lines_from_config`, `boundary_lines` or `convergence_lines`)
-    at its drive frequencies `f_ds`: a row per point, with `c_max_target` first when the line
-    belongs to a C_max."""
+    """One sweep line at its drive frequencies (`rotbeam.runs.sweeps.scan_line`).
+
+    Parameters
+    ----------
+    spec : dict
+        A line of `lines_from_config`, `boundary_lines` or `convergence_lines`: beam,
+        omega0 [rad/s], amplitude [rad/s] and, for a boundary line, c_max.
+    f_ds : list of float
+        Drive frequencies [Hz] (`scan_frequencies`).
+    effects : Effects
+        The model's effects.
+    numerics : Numerics
+        The solver settings.
+    log : callable or None
+        Receives progress messages.
+
+    Returns
+    -------
+    pandas.DataFrame
+        A row per point, with ``c_max_target`` first when the line belongs to a C_max.
+    """
     from ..runs.sweeps import scan_line
 
     df = scan_line(Beam(**spec["beam"]), spec["omega0"], f_ds, amplitude=spec["amplitude"],
@@ -144,9 +262,26 @@ def run_line(spec: dict[str, Any], f_ds: list[float], effects, numerics,
 def grid_columns(
     beams: dict[str, dict[str, float]],
 ) -> tuple[dict[str, dict[str, dict[str, float]]], list[str]]:
-    """A grid's beams by (E, L) column, for one sweep job per column (its beams differ in h/L
-    only): {column id 'E<E>_L<L>': {beam id: beam}}, and the tails of the beam ids after their
-    column id ('_hL0.05', ...; with the grid's tag if it has one), the same in every column."""
+    """A grid's beams by (E, L) column, for one sweep job per column (its beams differ in h/L).
+
+    Parameters
+    ----------
+    beams : dict
+        {beam id: the beam's `Beam` fields}, ids as `fig7_beams` makes them.
+
+    Returns
+    -------
+    columns : dict
+        {column id "E<E>_L<L>": {beam id: beam}}.
+    tails : list of str
+        The beam ids after their column id ("_hL0.05", ...; with the grid's tag if it has
+        one), the same in every column.
+
+    Raises
+    ------
+    ValueError
+        When a beam id does not start with its column id, or the columns differ in their tails.
+    """
     columns: dict[str, dict[str, dict[str, float]]] = {}
     for bid, beam in beams.items():
         column = f"E{g(beam['E'])}_L{g(beam['L'])}"
@@ -162,10 +297,24 @@ def grid_columns(
 
 
 def check_config(config: dict[str, Any], schema: dict | None = None) -> None:
-    """Checks the JSON schema cannot express (NaN and inf pass its bounds, ranges, physics).
+    """The checks of the workflow config that the JSON schema cannot express.
 
-    Every message is one line naming the key, its value and what is allowed; `schema` (the
-    workflow's config schema) words the allowed range of a non-finite value.
+    NaN and inf pass its bounds; scan ranges must not be empty or reversed; every beam (the
+    reference, the Fig. 7 grid, each reproduction grid) must be one `Beam` accepts, with the
+    clamp off the axis; effects and numerics must parse.
+
+    Parameters
+    ----------
+    config : dict
+        The workflow config.
+    schema : dict or None
+        The workflow's config schema, which words the allowed range of a non-finite value.
+
+    Raises
+    ------
+    RotbeamInputError
+        At the first check that fails; the message is one line naming the key, its value and
+        what is allowed.
     """
     for path, v in json_numbers(config):
         if not math.isfinite(v):
@@ -225,9 +374,28 @@ def validate_config(
     schema_validate: Callable[[dict[str, Any]], None] | None = None,
 ) -> dict[str, Any]:
     """The workflow's config check: numbers given as strings become numbers, then the JSON
-    schema (`schema_validate`: snakemake.utils.validate in the workflow, jsonschema by default),
-    then `check_config`.  Returns the coerced config; raises RotbeamInputError with one line
-    naming the key, the value and what is allowed."""
+    schema, then `check_config`.
+
+    Parameters
+    ----------
+    config : dict
+        The workflow config.
+    schema_path : str or Path
+        The config schema (YAML).
+    schema_validate : callable or None
+        Validates a config against the schema (snakemake.utils.validate in the workflow);
+        None: jsonschema's Draft 2020-12 validator.
+
+    Returns
+    -------
+    dict
+        The coerced config.
+
+    Raises
+    ------
+    RotbeamInputError
+        With one line naming the key, the value and what is allowed.
+    """
 
     root = load_yaml(Path(schema_path).read_text())
     config = coerce_numbers(config)
@@ -255,8 +423,29 @@ def validate_config(
     return config
 
 
-def boundary_lines(beam: dict[str, float], c_max: list[float], scan: dict, amplitude: float):
-    """One line per C_max; C_max below G a^2 (Omega_0 < 0) is skipped and listed."""
+def boundary_lines(
+    beam: dict[str, float], c_max: list[float], scan: dict, amplitude: float
+) -> tuple[dict[str, dict[str, Any]], list[float]]:
+    """The boundary lines of one beam, one per C_max.
+
+    Parameters
+    ----------
+    beam : dict
+        The beam's `Beam` fields (SI).
+    c_max : list of float
+        The lines' C_max (dimensionless).
+    scan : dict
+        The f_0-relative scan: ``lo``, ``hi``, ``points``.
+    amplitude : float
+        Drive amplitude a [rad/s].
+
+    Returns
+    -------
+    lines : dict
+        {line id "cmax<C_max>": its spec (beam, omega0, amplitude, c_max, scan)}.
+    skipped : list of float
+        The C_max below G a^2 (Omega_0 < 0), left out.
+    """
     b = Beam(**beam)
     lines, skipped = {}, []
     for c in c_max:
@@ -272,8 +461,21 @@ def boundary_lines(beam: dict[str, float], c_max: list[float], scan: dict, ampli
 
 
 def lines_from_config(config: dict[str, Any]) -> dict[tuple[str, str], dict[str, Any]]:
-    """Every sweep line of the workflow but Fig. B.8's (`convergence_lines`), keyed by (beam id,
-    line id)."""
+    """Every sweep line of the workflow but Fig. B.8's (`convergence_lines`).
+
+    Fig. 3's line, Fig. 4's lines, the reference beam's boundary lines and those of every Fig. 7
+    beam.
+
+    Parameters
+    ----------
+    config : dict
+        The workflow config.
+
+    Returns
+    -------
+    dict
+        {(beam id, line id): the line's spec}; the reference beam's id is `REF`.
+    """
     a = float(config["amplitude"])
     ref = config["beam"]
     out: dict[tuple[str, str], dict[str, Any]] = {}
@@ -298,9 +500,21 @@ def lines_from_config(config: dict[str, Any]) -> dict[tuple[str, str], dict[str,
 
 
 def convergence_lines(config: dict[str, Any]) -> dict[str, dict[str, Any]]:
-    """The grid-convergence lines of Fig. B.8 (App. C), keyed by line id conv_N{N}_w{Omega_0}:
-    the reference beam at each Omega_0 and the config's drive frequencies on a grid of N points,
-    N outer and Omega_0 inner (the row order of Fig. B.8's table)."""
+    """The grid-convergence lines of Fig. B.8 (App. C).
+
+    The reference beam at each Omega_0 and the config's drive frequencies on a grid of N
+    intervals, N outer and Omega_0 inner (the row order of Fig. B.8's table).
+
+    Parameters
+    ----------
+    config : dict
+        The workflow config (sections ``beam``, ``amplitude``, ``convergence``).
+
+    Returns
+    -------
+    dict
+        {line id "conv_N<N>_w<Omega_0>": the line's spec, with its N}.
+    """
     a = float(config["amplitude"])
     cv = config["convergence"]
     out = {}
@@ -314,13 +528,30 @@ def convergence_lines(config: dict[str, Any]) -> dict[str, dict[str, Any]]:
 
 
 def run_convergence_lines(
-    lines: dict[str, dict[str, Any]], effects, numerics: dict[str, Any],
+    lines: dict[str, dict[str, Any]], effects: Effects, numerics: dict[str, Any],
     log: Callable[[str], None] | None = None,
 ):  # fmt: skip
-    """Every grid-convergence line (`convergence_lines`) in this process, one job for all (a line
-    is 0.02-1.4 s of work, less than a job's start-up): one DataFrame, the lines' rows in the
-    order of `lines`.  Each line studies the raw grid: `numerics` (the config's) with the line's
-    N and no Richardson extrapolation."""
+    """Every grid-convergence line, run in this process: one job for all.
+
+    A line is 0.02-1.4 s of work, less than a job's start-up.  Each line studies the raw grid:
+    the config's numerics with the line's N and no Richardson extrapolation.
+
+    Parameters
+    ----------
+    lines : dict
+        The lines of `convergence_lines`.
+    effects : Effects
+        The model's effects.
+    numerics : dict
+        The config's ``numerics`` section.
+    log : callable or None
+        Receives progress messages.
+
+    Returns
+    -------
+    pandas.DataFrame
+        The lines' rows, in the order of `lines`.
+    """
     import pandas as pd
 
     from ..runs.sweeps import numerics_from_config
@@ -336,7 +567,19 @@ def run_convergence_lines(
 
 
 def series_from_config(config: dict[str, Any]) -> dict[str, dict[str, Any]]:
-    """Single scenes whose time series are kept (Fig. 3b,c; Fig. 5b,c)."""
+    """The single scenes whose time series are kept (Fig. 3b,c; Fig. 5b,c).
+
+    Parameters
+    ----------
+    config : dict
+        The workflow config (sections ``beam``, ``amplitude``, ``fig3``, ``fig5``).
+
+    Returns
+    -------
+    dict
+        {series id ("fig3", "fig5_E<E_max>"): its spec (beam, omega0 [rad/s], f_d [Hz],
+        amplitude, periods; Fig. 5's also c_max and e_max)}.
+    """
     a = float(config["amplitude"])
     ref = config["beam"]
     b = Beam(**ref)
@@ -356,7 +599,19 @@ def series_from_config(config: dict[str, Any]) -> dict[str, dict[str, Any]]:
 
 
 def scan_frequencies(spec: dict[str, Any]) -> list[float]:
-    """The drive frequencies of a line (explicit list, or f_0-relative scan)."""
+    """The drive frequencies of a line: its explicit list, or its f_0-relative scan.
+
+    Parameters
+    ----------
+    spec : dict
+        A line spec with ``f_d`` (a list [Hz]) or ``scan`` (``lo``, ``hi``, ``points``,
+        fractions of f_0, the linear first frequency at Omega_0 + a).
+
+    Returns
+    -------
+    list of float
+        The drive frequencies [Hz]; non-finite ones are left out.
+    """
     if "f_d" in spec:
         return [float(f) for f in spec["f_d"]]
     from ..runs.sweeps import boundary_scan_frequencies

@@ -22,7 +22,19 @@ from ..report.style import ACCENT, DYN, GREY, QS, apply_style, figure, panel_lab
 
 
 def southwell_figure(table: pd.DataFrame, beam: dict, N: int, pdf: str, png: str) -> None:
-    """f_0/f_n vs C_max (Southwell line, exact, dynamic peaks) and the Southwell error."""
+    """f_0/f_n against C_max (Southwell line, exact, dynamic peaks) and the Southwell error.
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        The table of `rotbeam.paper.surrogate_study.southwell_table`.
+    beam : dict
+        The beam's `Beam` fields (SI).
+    N : int
+        Grid intervals of the exact frequencies (for the legend).
+    pdf, png : str
+        Paths the figure is written to.
+    """
     bm = Beam(**beam)
     fig, (a, b) = figure(2, 1, height=5.6, sharex=True)
     cur = table[table["kind"] == "curve"].sort_values("C_max")
@@ -72,8 +84,30 @@ def vs_full_figure(
     pdf: str,
     png: str,
 ) -> None:
-    """RMS and Delta RMS of both models along f_d (one column per Omega_0), the phase boundaries
-    with Eq. (analytical_sol), and the relative difference of f_d* per line."""
+    """The surrogate against the full model: responses, boundaries and f_d* per line.
+
+    RMS and Delta RMS of both models along f_d (one column per Omega_0), the phase boundaries
+    with Eq. (analytical_sol), and the relative difference of f_d* per line.
+
+    Parameters
+    ----------
+    fig4_lines : sequence of pandas.DataFrame
+        The full model's Fig. 4 sweep lines.
+    curves : sequence of pandas.DataFrame
+        The surrogate on each of them (`rotbeam.paper.surrogate_study.surrogate_curve`).
+    table : pandas.DataFrame
+        The line table of `rotbeam.paper.surrogate_study.vs_full_table`.
+    boundary : pandas.DataFrame
+        `rotbeam.paper.surrogate_study.surrogate_boundary`.
+    threshold : float
+        The Delta RMS threshold.
+    tolerance : float
+        The relative f_d* difference drawn as the band of the last panel.
+    c_fit : float
+        The fitted c of Eq. (analytical_sol) (for the legend).
+    pdf, png : str
+        Paths the figure is written to.
+    """
     import matplotlib.pyplot as plt
 
     apply_style()

@@ -1,17 +1,9 @@
 """The one-mode surrogate (Sec. 6) beside the full model: the tables of the surrogate study.
 
-Two studies (their figures are `rotbeam.paper.surrogate_figures`; the workflow's scripts only
-read, call and write):
-
-* `southwell_table`: the Southwell line f_0 (Eq. centrifugal_stiffening) against the exact first
-  in-plane frequency of the linearised discrete model over C_max, with the resonance peaks of full
-  dynamic sweep lines as extra points (`peak_of_line`); `discretisation_floor` is the error of
-  the discrete model's f_1 at rest.
-* `surrogate_points`, `vs_full_table`, `surrogate_boundary`: RMS and Delta RMS of the surrogate
-  at the drive frequencies of full sweep lines, the critical frequency f_d* of both per line
-  (the full model's from `full_critical`), the surrogate's phase boundary with
-  Eq. (analytical_sol) on the same axes, and the cost per point of both models;
-  `validity_statement` says in words where the two f_d* agree.
+`southwell_table` sets the Southwell line f_0 against the exact first in-plane frequency;
+`vs_full_table` and `surrogate_boundary` set the surrogate's RMS, Delta RMS, f_d* and cost
+against the full model's.  Their figures are `rotbeam.paper.surrogate_figures`; the two studies:
+docs/reproduction.md.
 """
 
 from __future__ import annotations
@@ -43,9 +35,22 @@ from ..model.surrogate import (
 def peak_of_line(line: pd.DataFrame) -> dict:
     """Peak of the dynamic RMS over the converged points of one sweep line.
 
-    The true maximum lies between the neighbours of the grid maximum (`f_peak_lo_hz`,
-    `f_peak_hi_hz`); `f_peak_interp_hz` is the vertex of the parabola through the three points
-    (NaN, like the bracket, when the maximum is the first or last point of the scan).
+    The true maximum lies between the neighbours of the grid maximum (``f_peak_lo_hz``,
+    ``f_peak_hi_hz``); ``f_peak_interp_hz`` is the vertex of the parabola through the three
+    points (NaN, like the bracket, when the maximum is the first or last point of the scan, or
+    when the parabola opens upwards).
+
+    Parameters
+    ----------
+    line : pandas.DataFrame
+        A full sweep line (f_d, rms_dynamic, converged).
+
+    Returns
+    -------
+    dict
+        ``f_peak_hz`` (the grid maximum), ``f_peak_lo_hz``, ``f_peak_hi_hz`` and
+        ``f_peak_interp_hz`` [Hz]; ``rms_peak`` (units of L); ``peak_at_edge`` (bool);
+        ``points_used`` (the converged points).  NaN with no converged point.
     """
     ok = line["converged"].astype(bool) & np.isfinite(line["rms_dynamic"])
     sub = line.loc[ok].sort_values("f_d")
@@ -74,10 +79,33 @@ def southwell_table(
     N: int,
     peak_lines: Mapping[str, pd.DataFrame] | None = None,
 ) -> tuple[pd.DataFrame, list[float]]:
-    """Southwell vs exact first in-plane frequency at Omega = Omega_0 + a over C_max.
+    """The Southwell line against the exact first in-plane frequency, at Omega_0 + a, over C_max.
 
-    Rows of kind `curve` come from `c_max` (values with Omega_0 < 0 are skipped and returned);
-    rows of kind `dynamic_peak` from the peaks of full sweep lines, at their own C_max.
+    Southwell: Eq. (centrifugal_stiffening) with the in-plane S_1; exact: the first frequency of
+    the linearised discrete model on N intervals.
+
+    Parameters
+    ----------
+    beam : dict
+        The beam's `Beam` fields (SI).
+    c_max : sequence of float
+        C_max of the curve's rows (dimensionless).
+    amplitude : float
+        Drive amplitude a [rad/s].
+    N : int
+        Grid intervals of the exact frequency.
+    peak_lines : mapping of str to pandas.DataFrame or None
+        Full sweep lines by name, whose resonance peaks (`peak_of_line`) become extra rows.
+
+    Returns
+    -------
+    table : pandas.DataFrame
+        Rows of kind "curve" (one per C_max with Omega_0 >= 0) and "dynamic_peak" (one per
+        line, at its own C_max): omega, f_n_hz, f0_southwell_hz, f0_exact_hz and
+        rel_error_southwell; peak rows also the `peak_of_line` columns and the peak's relative
+        difference to both frequencies.
+    skipped : list of float
+        The C_max left out because Omega_0 = sqrt(C_max / G) - a < 0.
     """
     b = Beam(**beam)
     rows, skipped = [], []
@@ -109,7 +137,20 @@ def southwell_table(
 
 
 def discretisation_floor(beam: dict, N: int) -> float:
-    """f_1(Omega = 0) of the discrete model over the continuum f_n, minus 1 (error at N)."""
+    """The discrete model's error in f_1 at rest: f_1(Omega = 0) / f_n - 1.
+
+    Parameters
+    ----------
+    beam : dict
+        The beam's `Beam` fields (SI).
+    N : int
+        Grid intervals.
+
+    Returns
+    -------
+    float
+        The relative error (dimensionless) against the continuum f_n.
+    """
     b = Beam(**beam)
     return float(modes(b, 0.0, 1, N, softening=True)[0]) / b.f_n - 1.0
 
@@ -122,8 +163,25 @@ def surrogate_points(
 ) -> tuple[pd.DataFrame, float]:
     """Surrogate steady state at every drive frequency of a full sweep line, beside the full one.
 
-    Returns the point table and the wall time [s] of `steady_rms` over these points (best of
-    `repeats` passes).
+    Parameters
+    ----------
+    beam : dict
+        The beam's `Beam` fields (SI).
+    line : pandas.DataFrame
+        A full sweep line (omega0, amplitude, C_max, f_d, rms_dynamic, rms_quasistatic,
+        delta_rms, converged, seconds).
+    effects : Effects
+        The effects of the surrogate.
+    repeats : int
+        Passes over the points; the fastest is timed.
+
+    Returns
+    -------
+    points : pandas.DataFrame
+        One row per f_d: the full model's RMS, Delta RMS, convergence and seconds, the
+        surrogate's RMS and Delta RMS, and their relative RMS differences.
+    seconds : float
+        Wall time [s] of `steady_rms` over these points, best of `repeats` passes.
     """
     b = Beam(**beam)
     w0 = float(line["omega0"].iloc[0])
@@ -151,7 +209,24 @@ def surrogate_points(
 
 
 def surrogate_curve(beam: dict, line: pd.DataFrame, effects: Effects, points: int) -> pd.DataFrame:
-    """Surrogate RMS and Delta RMS on a fine f_d grid spanning a sweep line (for plotting)."""
+    """Surrogate RMS and Delta RMS on a fine f_d grid spanning a sweep line, for plotting.
+
+    Parameters
+    ----------
+    beam : dict
+        The beam's `Beam` fields (SI).
+    line : pandas.DataFrame
+        A full sweep line (omega0, amplitude, f_d).
+    effects : Effects
+        The effects of the surrogate.
+    points : int
+        Drive frequencies, evenly spaced from the line's lowest f_d to its highest.
+
+    Returns
+    -------
+    pandas.DataFrame
+        Columns f_d [Hz], rms_dynamic, rms_quasistatic (units of L) and delta_rms.
+    """
     b = Beam(**beam)
     w0 = float(line["omega0"].iloc[0])
     a = float(line["amplitude"].iloc[0])
@@ -178,8 +253,26 @@ def full_critical(
     threshold: float,
     beam: dict,
 ) -> dict[str, float]:
-    """The full model's f_d* (PCHIP root of its scan) per line: the Fig. 4 lines as rule fig4
-    finds it, the boundary lines from the boundary table at `threshold` (matched on Omega_0)."""
+    """The full model's f_d* (the PCHIP root of its scan) on every line of the comparison.
+
+    Parameters
+    ----------
+    fig4_lines : mapping of str to pandas.DataFrame
+        The Fig. 4 sweep lines by name; their f_d* is found as rule fig4 finds it.
+    boundary_lines : mapping of str to pandas.DataFrame
+        Boundary sweep lines by name; their f_d* is read from `boundary`, matched on Omega_0.
+    boundary : pandas.DataFrame
+        The reference beam's boundary table (threshold, omega0, f_d_root).
+    threshold : float
+        The Delta RMS threshold.
+    beam : dict
+        The beam's `Beam` fields (SI).
+
+    Returns
+    -------
+    dict
+        {line name: f_d* [Hz]}, NaN where the line has none.
+    """
     out = {}
     for name, line in fig4_lines.items():
         crit = boundary_table([line], [threshold], beam)
@@ -272,14 +365,49 @@ def vs_full_table(
     c_fit: float,
     tolerance: float,
 ) -> tuple[pd.DataFrame, pd.DataFrame, dict]:
-    """Per-line f_d* of the surrogate and of the full model, their relative difference, E* of
-    both and of Eq. (analytical_sol) (fitted c; S_1 and exact frequencies), and the cost.
+    """Per line: f_d* of the surrogate and of the full model, E* of both and of the formula.
 
-    `full_critical[name]` is the full model's f_d* (root) of line `name`.  The surrogate's f_d* is
-    its own root (`critical_frequency`); `f_d_star_surrogate_grid_hz` is the surrogate's f_d*
-    found as the full model's is, on the same scan points with the same PCHIP rule, which
-    separates the model difference from the scan's interpolation error.
-    Returns the line table, the point table and a speed summary.
+    The surrogate's f_d* is its own root (`critical_frequency`);
+    ``f_d_star_surrogate_grid_hz`` is the surrogate's f_d* found as the full model's is, on the
+    same scan points with the same PCHIP rule, which separates the model difference from the
+    scan's interpolation error.  E* of Eq. (analytical_sol) uses the fitted c, with S_1 and with
+    the exact frequencies.
+
+    Parameters
+    ----------
+    beam : dict
+        The beam's `Beam` fields (SI).
+    lines : mapping of str to pandas.DataFrame
+        Full sweep lines by name.
+    full_critical : mapping of str to float
+        The full model's f_d* [Hz] of each line (`full_critical`).
+    threshold : float
+        The Delta RMS threshold.
+    effects : Effects
+        The effects of the surrogate.
+    n_scan : int
+        Scan points of the surrogate's own root finding.
+    N : int
+        Grid intervals of the exact frequencies.
+    c_fit : float
+        The fitted c of Eq. (analytical_sol) (dimensionless).
+    tolerance : float
+        Largest relative difference of f_d* for "within_tolerance".
+
+    Returns
+    -------
+    table : pandas.DataFrame
+        One row per line, by C_max: f_d* of both and their relative difference, E* of both
+        models and of Eq. (analytical_sol), c of both, the cost per point.
+    points : pandas.DataFrame
+        The `surrogate_points` of every line, with a column ``line``.
+    speed : dict
+        The cost per point of both models and the speed-up.
+
+    Raises
+    ------
+    RotbeamInputError
+        When the lines hold no point.
     """
     b = Beam(**beam)
     rows, pts, sur_seconds = [], [], 0.0
@@ -300,7 +428,20 @@ def vs_full_table(
 
 
 def validity_statement(table: pd.DataFrame, tolerance: float) -> str:
-    """Where |f_d*_surrogate / f_d*_full - 1| <= tolerance, in words (measured on the lines)."""
+    """Where the surrogate's f_d* is within a tolerance of the full model's, in words.
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        The line table of `vs_full_table`.
+    tolerance : float
+        Largest relative difference |f_d*_surrogate / f_d*_full - 1|.
+
+    Returns
+    -------
+    str
+        The C_max of the lines within and above it, measured on the lines.
+    """
     t = table[np.isfinite(table["rel_diff"])].sort_values("C_max")
     if t.empty:
         return "no line with f_d* of both models"
@@ -327,7 +468,35 @@ def surrogate_boundary(
     N: int,
     c_fit: float,
 ) -> pd.DataFrame:
-    """Surrogate E*(C_max) on a log grid with Eq. (analytical_sol) (S_1 and exact f_0)."""
+    """The surrogate's boundary E*(C_max) on a log grid, beside Eq. (analytical_sol).
+
+    Parameters
+    ----------
+    beam : dict
+        The beam's `Beam` fields (SI).
+    c_lo, c_hi : float
+        The grid's ends (dimensionless); C_max below G a^2 (Omega_0 < 0) is left out.
+    points : int
+        Grid points.
+    threshold : float
+        The Delta RMS threshold.
+    amplitude : float
+        Drive amplitude a [rad/s].
+    effects : Effects
+        The effects of the surrogate.
+    n_scan : int
+        Scan points of the surrogate's root finding.
+    N : int
+        Grid intervals of the exact f_0.
+    c_fit : float
+        The fitted c of Eq. (analytical_sol).
+
+    Returns
+    -------
+    pandas.DataFrame
+        Columns C_max, f_d_star_surrogate_hz (NaN where the surrogate has no root),
+        E_star_surrogate, E_star_analytical_S1 and E_star_analytical_exact.
+    """
     b = Beam(**beam)
     lo = max(float(c_lo), b.G * amplitude**2 * (1.0 + 1e-9))  # Omega_0 >= 0
     cs = np.logspace(math.log10(lo), math.log10(max(float(c_hi), lo)), points)
