@@ -419,7 +419,9 @@ def fold_row(bb: BeamBranch, arm: str, sweep_rows: list[dict], spec: NonlinearSp
     }  # fmt: skip
 
 
-def run_amplitude(beam: Beam, spec: NonlinearSpec, effects: Effects | None = None, log=None):
+def run_amplitude(
+    beam: Beam, spec: NonlinearSpec, effects: Effects | None = None, log=None
+) -> tuple[list[dict], list[dict]]:
     """Both arms and both sweeps of one amplitude, and their comparison: one job of the
     workflow target ``nonlinear``.
 

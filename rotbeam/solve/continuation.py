@@ -122,7 +122,7 @@ class FirstOrderProblem(BranchProblem):
         period: Callable[[float], float],
         dim: int,
         M: int = 33,
-    ):
+    ) -> None:
         self.rhs, self.jac, self.period, self.dim, self.M = rhs, jac, period, dim, M
         self.D1 = fourier_diff_matrix(M, 1.0)  # for a unit period; scaled by 1 / P(p)
 
@@ -213,7 +213,9 @@ class FirstOrderProblem(BranchProblem):
         return np.asarray(z0_of_t(t)).reshape(self.M, self.dim).ravel()
 
 
-def newton(problem: BranchProblem, x: np.ndarray, p: float, tol: float = 1e-10, maxiter: int = 30):
+def newton(
+    problem: BranchProblem, x: np.ndarray, p: float, tol: float = 1e-10, maxiter: int = 30
+) -> tuple[np.ndarray, bool]:
     """Newton on R(x, p) = 0 at fixed p, with dense solves: the first orbit of a branch.
 
     Parameters

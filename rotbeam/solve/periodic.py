@@ -50,7 +50,7 @@ class Collocation:
         Collocation instants tau_j = j P / M (odd).
     """
 
-    def __init__(self, model: DiscreteModel, M: int):
+    def __init__(self, model: DiscreteModel, M: int) -> None:
         self.model = model
         self.dl = dl = model.dl
         self.M = M
@@ -131,7 +131,7 @@ class Collocation:
         Lj[:, idx, idx] += Mv - Ba
         return Lj, Cj, Mm
 
-    def dense_jacobian(self, blocks) -> np.ndarray:
+    def dense_jacobian(self, blocks: tuple[np.ndarray, np.ndarray, np.ndarray]) -> np.ndarray:
         """The block Jacobian as one dense matrix (for small problems and tests).
 
         Parameters
@@ -152,7 +152,9 @@ class Collocation:
             J[j, :, j, :] += Lj[j]
         return J.reshape(M * n, M * n)
 
-    def jacobian_times(self, blocks, Y: np.ndarray) -> np.ndarray:
+    def jacobian_times(
+        self, blocks: tuple[np.ndarray, np.ndarray, np.ndarray], Y: np.ndarray
+    ) -> np.ndarray:
         """J Y without forming J: O(M n^2 + M^2 n).
 
         Parameters
@@ -174,7 +176,7 @@ class Collocation:
             + np.einsum("jik,jk->ji", Mm, self.D2 @ Y)
         )
 
-    def averaged_inverse(self, blocks):
+    def averaged_inverse(self, blocks: tuple[np.ndarray, np.ndarray, np.ndarray]):
         """Solver of the time-averaged (block-circulant) Jacobian, diagonal in Fourier space.
 
         D is exact on the M-point trigonometric polynomials, so with the blocks replaced by their

@@ -400,7 +400,7 @@ NUM_JAC_FACTOR_INCREASE = 10
 NUM_JAC_FACTOR_DECREASE = 0.1
 
 
-def validate_first_step(first_step, t0, t_bound):
+def validate_first_step(first_step: float, t0: float, t_bound: float) -> float:
     """The first step, checked: positive and within the interval.
 
     Parameters
@@ -427,7 +427,7 @@ def validate_first_step(first_step, t0, t_bound):
     return first_step
 
 
-def validate_max_step(max_step):
+def validate_max_step(max_step: float) -> float:
     """The largest step, checked: positive.
 
     Parameters
@@ -450,7 +450,7 @@ def validate_max_step(max_step):
     return max_step
 
 
-def warn_extraneous(extraneous):
+def warn_extraneous(extraneous: dict[str, Any]) -> None:
     """Warn about options the solver does not use.
 
     Parameters
@@ -466,7 +466,7 @@ def warn_extraneous(extraneous):
         )
 
 
-def validate_tol(rtol, atol, n):
+def validate_tol(rtol: float, atol: float | np.ndarray, n: int) -> tuple[float, np.ndarray]:
     """The tolerances, checked: rtol raised to 100 eps with a warning, atol non-negative.
 
     Parameters
@@ -505,7 +505,7 @@ def validate_tol(rtol, atol, n):
     return rtol, atol
 
 
-def norm(x):
+def norm(x: np.ndarray) -> float:
     """The RMS norm.
 
     Parameters
@@ -521,7 +521,18 @@ def norm(x):
     return np.linalg.norm(x) / x.size**0.5
 
 
-def select_initial_step(fun, t0, y0, t_bound, max_step, f0, direction, order, rtol, atol):
+def select_initial_step(
+    fun: Callable[[float, np.ndarray], np.ndarray],
+    t0: float,
+    y0: np.ndarray,
+    t_bound: float,
+    max_step: float,
+    f0: np.ndarray,
+    direction: float,
+    order: int,
+    rtol: float,
+    atol: float | np.ndarray,
+) -> float:
     """Initial step of Hairer, Norsett & Wanner, Solving ODEs I, Sec. II.4.
 
     Parameters
@@ -571,7 +582,15 @@ def select_initial_step(fun, t0, y0, t_bound, max_step, f0, direction, order, rt
     return min(100 * h0, h1, interval_length, max_step)
 
 
-def num_jac(fun, t, y, f, threshold, factor, sparsity=None):
+def num_jac(
+    fun: Callable[[float, np.ndarray], np.ndarray],
+    t: float,
+    y: np.ndarray,
+    f: np.ndarray,
+    threshold: float | np.ndarray,
+    factor: np.ndarray | None,
+    sparsity: np.ndarray | None = None,
+) -> tuple[np.ndarray, np.ndarray]:
     """Forward-difference Jacobian of the vectorized `fun`, with the step factor of each column
     adapted from call to call to keep the difference well above its round-off.
 
