@@ -1,17 +1,11 @@
-r"""Large drive around the first resonance: the branch of periodic orbits in f_d beside time-stepped
-sweeps that follow the beam (the workflow target ``nonlinear``, docs/stability.md).
+r"""Large drive around the first resonance: the branch of periodic orbits in f_d beside
+time-stepped sweeps that follow the beam (the workflow target ``nonlinear``).
 
-For one drive amplitude a at mean speed Omega_0:
-
-* two **arms** of the branch (`rotbeam.solve.beam_branch`): the orbit at f_lo continued up
-  (``from_below``) and the orbit at f_hi continued down (``from_above``), each ended `beyond`
-  points after its first unstable point (past it the large orbits tangle: docs/stability.md);
-* two **sweeps** by time stepping, up from f_lo and down from f_hi in steps of `sweep_step`,
-  each point started from the state the previous one ended in (`steady_state(state0=...)`);
-* the **check**: an arm's first loss of stability (fold: a real multiplier through +1; period
-  doubling: through -1; torus: a complex pair) is where the sweep in the same direction leaves
-  that arm (`departure`): it agrees when it lies between the sweep's last point on the arm and
-  its first point off it (one sweep step).
+For one drive amplitude: two arms of the branch (`rotbeam.solve.beam_branch`), the orbit at f_lo
+continued up and the one at f_hi continued down; two sweeps by time stepping, each point started
+from the state the previous one ended in; and the check that an arm's first loss of stability
+lies where the sweep in the same direction leaves that arm (`fold_row`).  What it writes and
+what it found: docs/stability.md, "The workflow target `nonlinear`".
 """
 
 from __future__ import annotations
@@ -30,7 +24,9 @@ from ..solve.continuation import Branch
 from ..solve.numerics import Numerics
 from ..solve.steady import steady_state
 
+#: the arms of the branch and their direction in f_d
 ARMS = {"from_below": 1.0, "from_above": -1.0}
+#: the time-stepped sweeps and their direction in f_d
 SWEEPS = {"up": 1.0, "down": -1.0}
 #: the sweep that leaves the branch an arm follows: up leaves the arm from below, down the other
 SWEEP_OF_ARM = {"from_below": "up", "from_above": "down"}
@@ -59,7 +55,18 @@ class NonlinearSpec:
     sweep_window: float | None = None
 
     def frequencies(self, direction: float) -> np.ndarray:
-        """The sweep's drive frequencies, in the order it visits them."""
+        """The sweep's drive frequencies, in the order it visits them.
+
+        Parameters
+        ----------
+        direction : float
+            > 0: up from f_lo; < 0: down from f_hi.
+
+        Returns
+        -------
+        numpy.ndarray
+            f_lo, f_lo + sweep_step, ... up to f_hi [Hz], reversed for a sweep down.
+        """
         k = int(math.floor((self.f_hi - self.f_lo) / self.sweep_step + 1e-9))
         f = self.f_lo + self.sweep_step * np.arange(k + 1)
         return f if direction > 0 else f[::-1]
@@ -76,9 +83,32 @@ def _stop_after_unstable(beyond: int):
 
 
 def branch_arm(beam: Beam, spec: NonlinearSpec, arm: str, effects: Effects) -> BeamBranch:
-    """One arm of the branch (`ARMS`), stopped `spec.beyond` points past its first instability.
+    """One arm of the branch, stopped `spec.beyond` points past its first unstable point.
+
     Where collocation finds no orbit at the arm's end of the range, the start moves inwards by
-    sweep steps (up to 5)."""
+    sweep steps (up to 5).
+
+    Parameters
+    ----------
+    beam : Beam
+        The beam (SI units).
+    spec : NonlinearSpec
+        The amplitude, range, grid and continuation steps.
+    arm : str
+        "from_below" (the orbit at f_lo continued up) or "from_above" (`ARMS`).
+    effects : Effects
+        Effects of the model.
+
+    Returns
+    -------
+    BeamBranch
+        The continued arm.
+
+    Raises
+    ------
+    RuntimeError
+        When no start is found within 5 sweep steps of the arm's end.
+    """
     lo, hi = spec.f_lo, spec.f_hi
     for k in range(6):
         shift = k * spec.sweep_step
@@ -95,10 +125,22 @@ def branch_arm(beam: Beam, spec: NonlinearSpec, arm: str, effects: Effects) -> B
 
 
 def first_instability(bb: BeamBranch) -> dict:
-    """Where the arm first loses stability: the kind (fold | period doubling | torus, or
-    branch point: a real multiplier through +1 where f_d does not turn), its f_d
-    (the bifurcation's estimate at that step, else the mean of the two points), the first fold
-    on the arm, and the points' f_d on either side."""
+    """Where an arm first loses stability, and how.
+
+    Parameters
+    ----------
+    bb : BeamBranch
+        The arm.
+
+    Returns
+    -------
+    dict
+        kind: "fold", "period doubling", "torus", "branch point" (a real multiplier through +1
+        where f_d does not turn) or "none" (no loss, or the first point already unstable);
+        f_loss [Hz]: the bifurcation's estimate at that step, else the mean of the two points'
+        f_d; f_stable and f_unstable [Hz]: the points on either side; f_fold [Hz]: the first
+        fold on the arm (nan: none).
+    """
     pts = bb.branch.points
     i = bb.branch.first_unstable()
     folds = bb.branch.folds()
@@ -118,8 +160,23 @@ def first_instability(bb: BeamBranch) -> dict:
 
 
 def arm_rows(bb: BeamBranch, arm: str, amplitude: float) -> list[dict]:
-    """The arm's points (`BeamBranch.rows`) with its name, a, the grid, and the bifurcations the
-    continuation detected between each point and the one before (kinds joined by "+")."""
+    """The arm's points as rows of `branches.csv`.
+
+    Parameters
+    ----------
+    bb : BeamBranch
+        The arm.
+    arm : str
+        Its name (`ARMS`).
+    amplitude : float
+        Drive amplitude a [rad/s].
+
+    Returns
+    -------
+    list of dict
+        `BeamBranch.rows` with amplitude, kind ("branch"), arm, N, M, and bifurcation: the
+        kinds the continuation detected between the point and the one before, joined by "+".
+    """
     found: dict[int, list[str]] = {}
     for b in bb.branch.bifurcations:
         found.setdefault(b.index, []).append(b.kind)
@@ -131,6 +188,19 @@ def arm_rows(bb: BeamBranch, arm: str, amplitude: float) -> list[dict]:
 
 
 def sweep_numerics(spec: NonlinearSpec) -> Numerics:
+    """The numerics of a sweep point: the spec's grid, tolerances and period budget, from a
+    collocated start, without limits in tau or wall time.
+
+    Parameters
+    ----------
+    spec : NonlinearSpec
+        N, rtol, ss_tol and max_periods.
+
+    Returns
+    -------
+    Numerics
+        The settings of `steady_state` along the sweep.
+    """
     return Numerics(N=spec.N, rtol=spec.rtol, ss_tol=spec.ss_tol, max_periods=spec.max_periods,
                     max_tau=1e9, max_seconds=1e9, start="periodic")  # fmt: skip
 
@@ -161,10 +231,35 @@ def follow_sweep(
     log=None,
     arm: BeamBranch | None = None,
 ) -> list[dict]:
-    """Time stepping along the sweep's frequencies (`_window`): the first point from its
-    collocated orbit (seeded by the arm's orbit if given), every next one from the state the
-    previous one ended in.  One row per point (RMS and max of y_m / L over the last period,
-    status, periods, |mu|max of the orbit reached, CPU s)."""
+    """Time stepping along the sweep's frequencies, following the beam.
+
+    The first point starts from its collocated orbit (seeded by the arm's orbit if given), every
+    next one from the state the previous one ended in (`steady_state(state0=...)`).  With
+    `spec.sweep_window` and an arm, only the frequencies within the window of the arm's first
+    loss of stability are visited.
+
+    Parameters
+    ----------
+    beam : Beam
+        The beam (SI units).
+    spec : NonlinearSpec
+        Amplitude, range, step, grid and tolerances.
+    sweep : str
+        "up" or "down" (`SWEEPS`).
+    effects : Effects
+        Effects of the model.
+    log : logging.Logger or None
+        Gets one line per point.
+    arm : BeamBranch or None
+        The arm whose orbit seeds the first point and whose loss of stability sets the window.
+
+    Returns
+    -------
+    list of dict
+        One row per point in the order visited: amplitude, kind ("sweep"), arm (the sweep's
+        name), N, f_d [Hz], rms_ym and max_ym (y_m / L over the reported samples), max_theta
+        [rad], status, periods, floquet_max and stable (of the orbit reached), seconds (CPU).
+    """
     num = sweep_numerics(spec)
     rows, state = [], None
     freqs, guess = _window(spec, sweep, arm)
@@ -193,8 +288,19 @@ def follow_sweep(
 
 
 def largest_jump(rows: list[dict]) -> dict:
-    """The consecutive pair of sweep points with the largest |change of RMS|: the two f_d (in
-    the sweep's order), the change, and its share of the sweep's RMS range."""
+    """The largest jump of a sweep: the consecutive pair of points whose RMS changes most.
+
+    Parameters
+    ----------
+    rows : list of dict
+        The sweep's rows (f_d, rms_ym) in the order visited.
+
+    Returns
+    -------
+    dict
+        f_before and f_after [Hz] (in the sweep's order), jump (the change of RMS y_m / L) and
+        share (|jump| over the sweep's RMS range); nan, nan, 0, 0 with fewer than two points.
+    """
     y = np.array([r["rms_ym"] for r in rows])
     f = np.array([r["f_d"] for r in rows])
     if y.size < 2:
@@ -207,8 +313,22 @@ def largest_jump(rows: list[dict]) -> dict:
 
 
 def hysteresis(up: list[dict], down: list[dict], tol: float = 0.1) -> list[float]:
-    """Drive frequencies where the up and down sweeps' RMS differ by more than tol times the
-    largest RMS (the two sweeps are on different attractors there)."""
+    """Where the up and down sweeps are on different attractors.
+
+    Parameters
+    ----------
+    up, down : list of dict
+        The two sweeps' rows (f_d, rms_ym).
+    tol : float
+        Relative difference, of the largest RMS of both sweeps, that counts.
+
+    Returns
+    -------
+    list of float
+        The up sweep's drive frequencies [Hz] where the down sweep, at the same f_d, differs
+        by more than tol times the largest RMS (frequencies the down sweep did not visit do
+        not count).
+    """
     down_at = {round(r["f_d"], 9): r["rms_ym"] for r in down}
     top = max(r["rms_ym"] for r in up + down)
     out = []
@@ -220,10 +340,27 @@ def hysteresis(up: list[dict], down: list[dict], tol: float = 0.1) -> list[float
 
 
 def departure(bb: BeamBranch, sweep_rows: list[dict], tol: float = 0.02) -> tuple[float, float]:
-    """Where the sweep leaves the arm's stable part (the points before its first unstable one):
-    (f_d of the last sweep point on it, f_d of the first one off it), in the sweep's order.  A
-    point is on it when its f_d lies in the stable part's range and its RMS is within `tol`
-    (relative) of the stable part's RMS interpolated there; (nan, nan) if it never leaves."""
+    """Where the sweep leaves the arm's stable part (the points before its first unstable one).
+
+    A sweep point is on it when its f_d lies in the stable part's range and its RMS is within
+    `tol` (relative) of the stable part's RMS interpolated there.
+
+    Parameters
+    ----------
+    bb : BeamBranch
+        The arm.
+    sweep_rows : list of dict
+        The sweep in the same direction (f_d, rms_ym), in the order visited.
+    tol : float
+        Relative RMS difference of a point still on the arm.
+
+    Returns
+    -------
+    last_on : float
+        f_d [Hz] of the last sweep point on the arm (nan when the first is already off).
+    first_off : float
+        f_d [Hz] of the first one off it.  (nan, nan) when the sweep never leaves.
+    """
     stable = bb.branch.stable_start()
     f = np.array([pt.p for pt in stable])
     y = np.array([rms(bb.problem.midspan(pt.x, pt.p)) for pt in stable])
@@ -243,9 +380,28 @@ def departure(bb: BeamBranch, sweep_rows: list[dict], tol: float = 0.02) -> tupl
 
 def fold_row(bb: BeamBranch, arm: str, sweep_rows: list[dict], spec: NonlinearSpec) -> dict:
     """One row of the folds table: where the arm first loses stability against where the sweep
-    in the same direction leaves the arm (`departure`); `distance` is how far (Hz) the loss lies
-    outside that interval (0 inside), `agrees` when it lies inside.  The sweep's largest jump
-    (`largest_jump`) is reported beside it."""
+    in the same direction leaves the arm.
+
+    Parameters
+    ----------
+    bb : BeamBranch
+        The arm.
+    arm : str
+        Its name (`ARMS`).
+    sweep_rows : list of dict
+        The sweep in the same direction (`SWEEP_OF_ARM`).
+    spec : NonlinearSpec
+        The amplitude and grid.
+
+    Returns
+    -------
+    dict
+        The loss (`first_instability`: loss_kind, f_loss, f_fold, f_stable, f_unstable), the
+        sweep's departure (`departure`: sweep_last_on, sweep_first_off), distance [Hz] (how far
+        the loss lies outside that interval, 0 inside, nan when either is unknown), agrees
+        (distance 0), the sweep's largest jump (`largest_jump`: jump_from, jump_to, jump_rms,
+        jump_share), N and M.
+    """
     loss = first_instability(bb)
     on, off = departure(bb, sweep_rows)
     jump = largest_jump(sweep_rows)
@@ -263,8 +419,31 @@ def fold_row(bb: BeamBranch, arm: str, sweep_rows: list[dict], spec: NonlinearSp
     }  # fmt: skip
 
 
-def run_amplitude(beam: Beam, spec: NonlinearSpec, effects: Effects | None = None, log=None):
-    """Both arms and both sweeps of one amplitude: (rows of branches and sweeps, fold rows)."""
+def run_amplitude(
+    beam: Beam, spec: NonlinearSpec, effects: Effects | None = None, log=None
+) -> tuple[list[dict], list[dict]]:
+    """Both arms and both sweeps of one amplitude, and their comparison: one job of the
+    workflow target ``nonlinear``.
+
+    Parameters
+    ----------
+    beam : Beam
+        The beam (SI units).
+    spec : NonlinearSpec
+        The amplitude and everything numerical.
+    effects : Effects or None
+        Effects of the model; None: the defaults.
+    log : logging.Logger or None
+        Gets a line per arm, sweep and sweep point.
+
+    Returns
+    -------
+    rows : list of dict
+        The arms' points (`arm_rows`) and the sweeps' points (`follow_sweep`).
+    folds : list of dict
+        One `fold_row` per arm, with hysteresis_from and hysteresis_to [Hz]: the range where
+        the two sweeps differ (`hysteresis`; nan when they do not).
+    """
     effects = effects if effects is not None else Effects()
     rows, folds, arms = [], [], {}
     for arm in ARMS:

@@ -1,23 +1,13 @@
 r"""What the beam does when there is no stable periodic steady state: classification of the
 time-stepped response.
 
-After `transient_periods` drive periods from the quasi-static start, `section_periods` more are
-integrated with one tangent vector (`rotbeam.solve.lyapunov`): the states at tau = k P are the
-stroboscopic Poincare section, the tangent gives the largest Lyapunov exponent (its growth rate
-over the second half of the section, so that a chaotic transient in the first half does not
-count: `LyapunovResult.late`), and 16 samples a period of y_m give the spectrum.  With size
-the largest |z| on the section and d(q) the largest
-|z_{j+q} - z_j| / size over the last half of the section (q = 1 .. MAX_SUBHARMONIC):
-
-* ``periodic`` (period P) when d(1) <= tol, ``subharmonic`` (period q P) when the smallest q
-  with d(q) <= tol is > 1, or when the exponent is clearly negative (lambda + spread < 0: a
-  periodic attractor still converging; then q minimises d);
-* otherwise ``chaotic`` when the exponent is clearly positive (lambda - spread > 0 and
-  lambda P > CHAOS_MIN, a growth of more than 1 % a period), else ``quasiperiodic``
-  (lambda ~ 0: the section fills a closed curve, the spectrum has incommensurate lines).
-
-lyapunov_max is reported per second (lambda / T).  The classification is as good as the run is
-long: the message gives the periods, the exponent's spread and the grid.
+`response_of` steps past a transient, then integrates a stroboscopic (Poincare) section with one
+tangent vector (`rotbeam.solve.lyapunov`) and calls the motion periodic, subharmonic,
+quasiperiodic or chaotic from the section's distances d(q) and the largest Lyapunov exponent
+over the section's second half; 16 samples a period of y_m give its spectrum.  The
+classification is as good as the run is long: the message gives the periods, the exponent's
+spread and the grid.  Rules and measurements: docs/stability.md, "When there is no stable
+periodic state".
 """
 
 from __future__ import annotations
@@ -44,31 +34,43 @@ RESPONSES = ("periodic", "subharmonic", "quasiperiodic", "chaotic")
 #: a third of the steps; the lightly damped top bending modes, rung by the large motion, set the
 #: step (docs/stability.md "The response at a = 3 rad/s, 7 Hz")
 RTOL = 1e-5
-MAX_SUBHARMONIC = 8
+MAX_SUBHARMONIC = 8  #: the largest q of a subharmonic (period q P) looked for
 CHAOS_MIN = 0.01  #: lambda P above which a clearly positive exponent counts as chaos
 SAMPLES = 16  #: samples per period for the spectrum
 
 
 @dataclass
 class ResponseResult:
+    """The class of a time-stepped response, with the section, spectrum and Lyapunov exponent
+    it rests on (`response_of`)."""
+
     response: str  #: one of RESPONSES
     period_multiple: int  #: q for periodic (1) and subharmonic; 0 otherwise
     lyapunov_max: float  #: largest Lyapunov exponent over the section's second half [1/s]
     lyapunov_spread: float  #: its third quarter's rate minus its fourth's (absolute) [1/s]
     section: np.ndarray  #: (K, 2) y_m / L and its rate [1/s] at t = k / f_d
-    spectrum_hz: np.ndarray
+    spectrum_hz: np.ndarray  #: frequencies of `spectrum` [Hz]
     spectrum: np.ndarray  #: |FFT| of y_m (Hann window)
-    peaks_hz: list[float]
+    peaks_hz: list[float]  #: the five largest peaks of the spectrum [Hz], largest first
     periods: int  #: transient + section periods integrated
-    N: int
-    seconds: float
-    message: str
+    N: int  #: grid intervals of the run
+    seconds: float  #: wall time of the run [s]
+    message: str  #: the class, the run's length, grid and exponent, in words
     distances: list[float] = field(default_factory=list)  #: d(q), q = 1..MAX_SUBHARMONIC
     #: the exponent's running estimate after each section period [1/s] (its convergence)
     lyapunov_running: np.ndarray = field(default_factory=lambda: np.zeros(0))
     start: str = "quasistatic"  #: initial state of the run (`rotbeam.solve.steady.initial_state`)
 
     def as_dict(self) -> dict:
+        """The columns a result carries (`rotbeam simulate --json`).
+
+        Returns
+        -------
+        dict
+            response, lyapunov_max and lyapunov_spread [1/s], period_multiple,
+            response_periods, response_N, response_peaks_hz (the five largest, [Hz]) and
+            response_message.
+        """
         return {"response": self.response, "lyapunov_max": self.lyapunov_max,
                 "lyapunov_spread": self.lyapunov_spread, "period_multiple": self.period_multiple,
                 "response_periods": self.periods, "response_N": self.N,
@@ -77,7 +79,31 @@ class ResponseResult:
 
 
 def classify(distances: list[float], lam_P: float, spread_P: float, tol: float) -> tuple[str, int]:
-    """(response, q) from the section distances d(q) and the exponent per period."""
+    """The class of a response from its section distances and its Lyapunov exponent.
+
+    Periodic (q = 1) or subharmonic (period q P) for the smallest q with d(q) <= tol, or when
+    the exponent is clearly negative (lambda P + spread P < 0: a periodic attractor still
+    converging; then q minimises d); otherwise chaotic when it is clearly positive
+    (lambda P - spread P > 0 and lambda P > CHAOS_MIN), else quasiperiodic.
+
+    Parameters
+    ----------
+    distances : list of float
+        d(q), q = 1 .. MAX_SUBHARMONIC (`section_distances`).
+    lam_P : float
+        The exponent times the drive period: the log growth per period.
+    spread_P : float
+        Its uncertainty, times the period.
+    tol : float
+        The largest d(q) of a periodic or subharmonic section (relative).
+
+    Returns
+    -------
+    response : str
+        One of RESPONSES.
+    q : int
+        The period multiple: 1 for periodic, q > 1 for subharmonic, 0 otherwise.
+    """
     for q, d in enumerate(distances, start=1):
         if d <= tol:
             return ("periodic" if q == 1 else "subharmonic"), q
@@ -90,7 +116,22 @@ def classify(distances: list[float], lam_P: float, spread_P: float, tol: float) 
 
 
 def section_distances(section: np.ndarray, max_q: int = MAX_SUBHARMONIC) -> list[float]:
-    """d(q) over the last half of the section, relative to its largest |z|."""
+    """How far the section is from repeating after q periods, q = 1 .. max_q.
+
+    Parameters
+    ----------
+    section : numpy.ndarray
+        The states at whole drive periods, shape (K, dim).
+    max_q : int
+        The largest q.
+
+    Returns
+    -------
+    list of float
+        d(q): the largest |z_{j+q} - z_j| (max-norm) over the last half of the section,
+        relative to the largest |z| on the whole section; inf where the last half holds no
+        pair q apart.
+    """
     K = section.shape[0]
     size = max(float(np.max(np.abs(section))), 1e-300)
     tail = section[K // 2 :]
@@ -146,10 +187,43 @@ def response_of(
 ) -> ResponseResult:
     """Time-step the scene past its transient and classify what it settles into.
 
-    `start`: "quasistatic" (default) or "rest" (or "linear"), the state at t = 0.
-    `progress(done, total)` is called after every period.  `max_seconds` bounds the run: the
-    transient gets its share (transient / all periods) of it, the section the rest; the message
-    says where the budget cut a phase short.
+    Radau steps the transient one period a solve (so the budget and `progress` are seen between
+    periods), then `rotbeam.solve.lyapunov.largest_lyapunov` integrates the section with one
+    tangent vector; `classify` decides (docs/stability.md, "When there is no stable periodic
+    state").  The absolute tolerances scale with the quasi-static response, also from rest.
+
+    Parameters
+    ----------
+    model : DiscreteModel
+        The model, its grid and its drive (dimensionless time tau in units of T).
+    time_scale : float
+        T [s] of the beam: rates per unit tau are divided by it to give 1/s.
+    transient_periods : int
+        Drive periods stepped before the section.
+    section_periods : int
+        Drive periods of the section (and of the Lyapunov estimate).
+    max_seconds : float
+        Wall-time budget [s]: the transient gets its share (transient / all periods), the
+        section the rest; the message says where the budget cut a phase short.
+    rtol : float
+        Relative tolerance of the stepper.
+    tol : float
+        Section distance d(q) below which the motion repeats after q periods.
+    start : str
+        The state at tau = 0: "quasistatic", "rest" or "linear" (`initial_state`).
+    progress : callable or None
+        progress(done, total) after every period.
+
+    Returns
+    -------
+    ResponseResult
+        The class, the section of y_m / L and its rate, the spectrum, the exponent per second
+        and how long the run was.
+
+    Raises
+    ------
+    ValueError
+        For another `start`.
     """
     if start not in ("quasistatic", "rest", "linear"):
         raise ValueError(f"start must be quasistatic, rest or linear, got {start!r}")

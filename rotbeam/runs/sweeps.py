@@ -1,5 +1,6 @@
 """Sweeps of scenes: a line of drive frequencies at one Omega_0, with continuation and with a
-row for every point, failed ones included (their reason in `message`)."""
+row for every point, failed ones included (their reason in `message`; docs/numerics.md,
+"Sweeps")."""
 
 from __future__ import annotations
 
@@ -20,6 +21,7 @@ from .scene import Scene, simulate
 if TYPE_CHECKING:
     import pandas
 
+#: the columns of a sweep's table, in order
 COLUMNS = [
     "omega0", "f_d", "amplitude", "fd_over_fn", "C_max", "E_max", "E_n", "f_n_hz", "f0_hz",
     "rms_dynamic", "rms_quasistatic", "delta_rms", "converged", "status", "message",
@@ -30,7 +32,31 @@ COLUMNS = [
 def boundary_scan_frequencies(
     beam: Beam, omega0: float, lo: float, hi: float, points: int, amplitude: float = 1.0
 ) -> np.ndarray:
-    """Drive frequencies f_0 * linspace(lo, hi, points) for locating f_d* on one C_max line."""
+    """Drive frequencies for locating f_d* on one C_max line, around the linear resonance.
+
+    Parameters
+    ----------
+    beam : Beam
+        The beam (SI units).
+    omega0 : float
+        Mean angular velocity Omega_0 [rad/s].
+    lo, hi : float
+        The range in units of f_0, 0 < lo < hi.
+    points : int
+        Number of frequencies, >= 2.
+    amplitude : float
+        Drive amplitude a [rad/s].
+
+    Returns
+    -------
+    numpy.ndarray
+        f_0 * linspace(lo, hi, points) [Hz], shape (points,), f_0 the linear resonance.
+
+    Raises
+    ------
+    RotbeamInputError
+        For a bad range or too few points.
+    """
     if not (0 < lo < hi):
         raise RotbeamInputError(f"scan range must satisfy 0 < lo < hi, got lo={lo}, hi={hi}")
     if points < 2:
@@ -47,7 +73,40 @@ def scan_line(
     numerics: Numerics | None = None,
     log: Callable[[str], None] | None = None,
 ) -> pandas.DataFrame:
-    """Dynamic and quasi-static RMS at each drive frequency of one line (continuation in f_d)."""
+    """Dynamic and quasi-static RMS at each drive frequency of one line (continuation in f_d).
+
+    Each point is `simulate` of its scene, its collocation seeded by the previous point's
+    converged orbit.  A point that fails gives a row all the same (NaN values, status -2, the
+    exception in `message`); an input error stops the line.
+
+    Parameters
+    ----------
+    beam : Beam
+        The beam (SI units).
+    omega0 : float
+        Mean angular velocity Omega_0 [rad/s].
+    f_ds : sequence of float
+        Drive frequencies [Hz], in the order run.
+    amplitude : float
+        Drive amplitude a [rad/s].
+    effects : Effects or None
+        Effects of the model; None: the defaults.
+    numerics : Numerics or None
+        Numerical settings; None: the defaults.
+    log : callable or None
+        log(line) after every point.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per frequency with the columns `COLUMNS` (RMS of y_m / L, Delta RMS, status,
+        message, |mu|max, seconds, ...).
+
+    Raises
+    ------
+    RotbeamInputError
+        For input the scene rejects.
+    """
     import pandas as pd
 
     effects = effects or Effects()
@@ -95,4 +154,17 @@ def scan_line(
 
 
 def numerics_from_config(cfg: dict | None) -> Numerics:
+    """The `Numerics` of a config's `numerics` section: the defaults with its values.
+
+    Parameters
+    ----------
+    cfg : dict or None
+        Field names of `Numerics` and their values; None: the defaults.
+
+    Returns
+    -------
+    Numerics
+        The checked settings (an unknown field raises TypeError, a bad value as `Numerics`
+        does).
+    """
     return replace(Numerics(), **(cfg or {}))

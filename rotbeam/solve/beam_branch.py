@@ -1,16 +1,10 @@
 r"""The beam's `BranchProblem`: periodic orbits of the discrete elastica continued in f_d.
 
-Unknowns x: the collocated orbit Theta at M equispaced phases j / M of the drive period,
-(M, n) flattened (n = N - 1), exactly the unknowns of `rotbeam.solve.periodic.Collocation`, whose
-residual and Jacobian are used as they are.  The parameter p is the drive frequency f_d in Hz;
-every other number of the scene is fixed in physical units (Beam, Drive.omega0, Drive.amplitude,
-Effects) and each p is turned into the dimensionless problem by `Dimensionless.from_physical`, so
-the period (and with it the collocation instants tau_j and the Fourier matrix D) changes with p
-while the phases j / M do not.  M stays fixed along a branch: `start_orbit` chooses it from the
-harmonic tail at the branch's first point (`solve_periodic_adaptive`).
-
-Floquet multipliers: `rotbeam.solve.floquet.beam_floquet` on the orbit and its spectral
-derivative V = D Theta.
+The unknowns are the collocated orbit Theta at M equispaced phases of the drive period (those of
+`rotbeam.solve.periodic.Collocation`, whose residual and Jacobian it uses as they are), the
+parameter is f_d in Hz with every other number of the scene fixed in physical units, and M
+stays fixed along a branch.  `beam_branch` follows the orbit at one end of a frequency range.
+Details: docs/stability.md, "Branches in f_d".
 """
 
 from __future__ import annotations
@@ -33,7 +27,12 @@ from .spectral import trig_interpolate
 @dataclass
 class BeamBranchProblem(BranchProblem):
     """Collocated orbits of one model, parameter p = f_d [Hz]: every number of the scene but the
-    drive frequency stays fixed in physical units."""
+    drive frequency stays fixed in physical units.
+
+    The unknowns x are Theta at the phases j / M of the drive period, shape (M, n) flattened
+    (n = N - 1); the period, and with it the collocation instants and the Fourier matrix D,
+    changes with f_d while the phases do not.
+    """
 
     model: DiscreteModel  #: the model at any f_d (its drive's frequency is replaced by p)
     T: float  #: time scale of the beam [s]: omega = 2 pi p T
@@ -41,11 +40,34 @@ class BeamBranchProblem(BranchProblem):
     _cols: dict = field(default_factory=dict, repr=False)
 
     def dimensionless(self, f_d: float) -> Dimensionless:
-        """The scene at drive frequency f_d [Hz]."""
+        """The scene at another drive frequency.
+
+        Parameters
+        ----------
+        f_d : float
+            Drive frequency [Hz].
+
+        Returns
+        -------
+        Dimensionless
+            The model's scene with omega = 2 pi f_d T.
+        """
         return replace(self.model.dl, omega=2.0 * math.pi * float(f_d) * self.T)
 
     def collocation(self, f_d: float) -> Collocation:
-        """The collocation at f_d (the last few kept: residual, Jacobian and dR/dp reuse them)."""
+        """The collocation problem at a drive frequency (the last four are kept: the residual,
+        Jacobian and dR/dp at one point reuse them).
+
+        Parameters
+        ----------
+        f_d : float
+            Drive frequency [Hz].
+
+        Returns
+        -------
+        Collocation
+            M equispaced instants of the drive period, for the model at that frequency.
+        """
         key = float(f_d)
         col = self._cols.get(key)
         if col is None:
@@ -58,19 +80,77 @@ class BeamBranchProblem(BranchProblem):
         return np.asarray(x, dtype=float).reshape(self.M, self.model.n)
 
     def residual(self, x: np.ndarray, p: float) -> np.ndarray:
+        """The collocation residual (`Collocation.residual`), flattened.
+
+        Parameters
+        ----------
+        x : numpy.ndarray
+            Theta [rad], shape (M n,).
+        p : float
+            Drive frequency f_d [Hz].
+
+        Returns
+        -------
+        numpy.ndarray
+            R, shape (M n,) (dimensionless torques).
+        """
         return self.collocation(p).residual(self._X(x)).ravel()
 
     def jacobian(self, x: np.ndarray, p: float) -> np.ndarray:
+        """The dense collocation Jacobian (`Collocation.dense_jacobian`).
+
+        Parameters
+        ----------
+        x : numpy.ndarray
+            Theta [rad], shape (M n,).
+        p : float
+            Drive frequency f_d [Hz].
+
+        Returns
+        -------
+        numpy.ndarray
+            dR/dx, shape (M n, M n).
+        """
         col = self.collocation(p)
         return col.dense_jacobian(col.jacobian_blocks(self._X(x)))
 
     def floquet(self, x: np.ndarray, p: float) -> FloquetResult:
+        """The Floquet multipliers of the orbit and its spectral derivative V = D Theta
+        (`rotbeam.solve.floquet.beam_floquet`).
+
+        Parameters
+        ----------
+        x : numpy.ndarray
+            Theta [rad], shape (M n,).
+        p : float
+            Drive frequency f_d [Hz].
+
+        Returns
+        -------
+        FloquetResult
+            The multipliers and the orbit's defect.
+        """
         col = self.collocation(p)
         X = self._X(x)
         return beam_floquet(col.model, X.T, (col.D @ X).T)
 
     def midspan(self, x: np.ndarray, p: float, samples: int = 64) -> np.ndarray:
-        """y_m / L over one period at `samples` equispaced instants (trigonometric interpolant)."""
+        """The midspan deflection over one period, from the orbit's trigonometric interpolant.
+
+        Parameters
+        ----------
+        x : numpy.ndarray
+            Theta [rad], shape (M n,).
+        p : float
+            Drive frequency f_d [Hz].
+        samples : int
+            Equispaced instants of the period.
+
+        Returns
+        -------
+        numpy.ndarray
+            y_m / L at those instants, shape (samples,).
+        """
         col = self.collocation(p)
         return np.atleast_1d(col.model.midspan(trig_interpolate(self._X(x), samples).T))
 
@@ -84,8 +164,15 @@ class BeamBranch:
     tail: float  #: harmonic tail of the start orbit (what fixed M)
 
     def rows(self) -> list[dict]:
-        """One row per branch point: f_d [Hz], RMS of y_m / L, |mu|max, stability, the leading
-        multiplier (real and imaginary parts), dp/ds."""
+        """The branch as table rows, one per point in the order followed.
+
+        Returns
+        -------
+        list of dict
+            index, f_d [Hz], rms_ym (RMS of y_m / L), floquet_max (|mu|max), mu_re and mu_im
+            (the leading multiplier), stable, crossing (`FloquetResult.crossing`) and
+            tangent_p (d f_d / ds).
+        """
         out = []
         for k, pt in enumerate(self.branch.points):
             mu = pt.floquet.multipliers[0]
@@ -109,7 +196,43 @@ def start_orbit(
     M0: int = 17,
     M_max: int = 65,
 ) -> tuple[BeamBranchProblem, np.ndarray, float]:
-    """The problem with M from the harmonic tail at f_d, and the converged orbit there."""
+    """The first orbit of a branch, and the problem with M chosen from its harmonic tail.
+
+    Parameters
+    ----------
+    beam : Beam
+        The beam (SI units).
+    omega0 : float
+        Mean angular velocity Omega_0 [rad/s].
+    amplitude : float
+        Drive amplitude a [rad/s].
+    f_d : float
+        Drive frequency of the first orbit [Hz].
+    effects : Effects or None
+        Effects of the model; None: the defaults.
+    N : int
+        Grid intervals.
+    tail_tol : float
+        Harmonic tail the first orbit must reach (`solve_periodic_adaptive`).
+    M0 : int
+        First number of collocation instants.
+    M_max : int
+        Finest M.
+
+    Returns
+    -------
+    problem : BeamBranchProblem
+        The model at f_d, its time scale T [s] and M.
+    x0 : numpy.ndarray
+        The orbit Theta [rad], shape (M n,) flattened.
+    tail : float
+        Its harmonic tail.
+
+    Raises
+    ------
+    RuntimeError
+        When collocation finds no orbit at f_d.
+    """
     effects = effects if effects is not None else Effects()
     dl = Dimensionless.from_physical(
         beam, Drive(omega0=omega0, f_d=f_d, amplitude=amplitude), effects
@@ -139,13 +262,55 @@ def beam_branch(
     direction: float = 1.0,
     stop=None,
 ) -> BeamBranch:
-    """Pseudo-arclength continuation of the orbit at the low end of f_range [Hz] up in f_d
-    (direction > 0), or of the orbit at the high end down (direction < 0); `stop(branch)`, if
-    given, ends it early (`continue_branch`).
+    """Pseudo-arclength continuation of the orbit at the low end of f_range up in f_d
+    (direction > 0), or of the orbit at the high end down (direction < 0).
 
     The arclength weights: f_d by 1 / p_scale [1/Hz], the orbit by x_scale / sqrt(dim x) with
     x_scale = 1 / (RMS of the start orbit's Theta) by default, so a step ds moves the orbit by
     about ds times its own size or f_d by about ds p_scale.
+
+    Parameters
+    ----------
+    beam : Beam
+        The beam (SI units).
+    omega0 : float
+        Mean angular velocity Omega_0 [rad/s].
+    amplitude : float
+        Drive amplitude a [rad/s].
+    f_range : tuple of float
+        (f_lo, f_hi) [Hz]: the branch starts at one end and stops outside the range.
+    effects : Effects or None
+        Effects of the model; None: the defaults.
+    N : int
+        Grid intervals.
+    tail_tol : float
+        Harmonic tail that fixes M at the first orbit (`start_orbit`).
+    ds : float
+        First arclength step.
+    ds_max : float
+        Largest arclength step.
+    max_points : int
+        Most points on the branch.
+    p_scale : float
+        Scale of f_d in the arclength [Hz].
+    x_scale : float or None
+        Weight of the orbit in the arclength; None: 1 / RMS of the start orbit.
+    on_point : callable or None
+        on_point(point) after every new `BranchPoint`.
+    direction : float
+        > 0: from f_lo upwards; < 0: from f_hi downwards.
+    stop : callable or None
+        stop(branch) after every new point: True ends the branch early.
+
+    Returns
+    -------
+    BeamBranch
+        The problem, the branch (`continue_branch`) and the start orbit's harmonic tail.
+
+    Raises
+    ------
+    RuntimeError
+        When collocation finds no orbit at the starting end.
     """
     lo, hi = min(f_range), max(f_range)
     f0 = lo if direction > 0 else hi

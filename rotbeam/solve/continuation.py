@@ -1,17 +1,10 @@
 r"""Branches of periodic orbits through folds: pseudo-arclength continuation in a parameter p.
 
-Generic over a `BranchProblem`: a residual R(x, p) of collocated periodic orbits (x the
-collocation unknowns, flattened), its Jacobian dR/dx (dense) and the Floquet multipliers of the
-orbit x.  `FirstOrderProblem` is one for any first-order ODE z' = f(t, z; p) with Jacobian,
-period P(p) (the Duffing oscillator in the tests); `rotbeam.solve.beam_branch` is the beam's.
-
-Keller's method.  With y = (x, p) and the unit tangent t (R_x t_x + R_p t_p = 0), a step of
-arclength ds predicts y + ds t and corrects by Newton on [R(y); t . W (y - y_pred)] = 0, W the
-weights (x by 1 / sqrt(dim x) times `x_scale`, p by 1 / p_scale).  The step grows by 1.3 after a
-corrector that converged in <= 4 iterations and halves after a failure.  Along the branch:
-a fold is where t_p changes sign (a real multiplier passes +1), its p the vertex of the parabola
-through the three points around it; a period doubling is where the count of real multipliers
-below -1 changes; a torus where the count of complex multipliers outside the circle does.
+Generic over a `BranchProblem` (a residual R(x, p) of collocated periodic orbits, its Jacobian
+and the orbit's Floquet multipliers): `FirstOrderProblem` is one for any first-order ODE (the
+Duffing oscillator in the tests), `rotbeam.solve.beam_branch` the beam's.  `continue_branch`
+follows an orbit by Keller's method and marks the folds, period doublings and tori it passes.
+Method: docs/stability.md, "Branches in f_d".
 """
 
 from __future__ import annotations
@@ -28,26 +21,99 @@ from .spectral import fourier_diff_matrix
 
 
 class BranchProblem:
-    """What continuation needs; subclasses implement residual, jacobian and floquet."""
+    """What continuation needs of a family of periodic orbits: the collocation residual, its
+    Jacobian and the orbit's Floquet multipliers, at a parameter p.  Subclasses implement
+    `residual`, `jacobian` and `floquet`; `dR_dp` is a central difference."""
 
     def residual(self, x: np.ndarray, p: float) -> np.ndarray:
+        """The collocation residual R(x, p), zero on a periodic orbit.
+
+        Parameters
+        ----------
+        x : numpy.ndarray
+            The collocation unknowns, flattened, shape (dim x,).
+        p : float
+            The parameter.
+
+        Returns
+        -------
+        numpy.ndarray
+            R, shape (dim x,).
+        """
         raise NotImplementedError
 
     def jacobian(self, x: np.ndarray, p: float) -> np.ndarray:
+        """The dense Jacobian dR/dx.
+
+        Parameters
+        ----------
+        x : numpy.ndarray
+            The collocation unknowns, shape (dim x,).
+        p : float
+            The parameter.
+
+        Returns
+        -------
+        numpy.ndarray
+            dR/dx, shape (dim x, dim x).
+        """
         raise NotImplementedError
 
     def floquet(self, x: np.ndarray, p: float) -> FloquetResult:
+        """The Floquet multipliers of the orbit x.
+
+        Parameters
+        ----------
+        x : numpy.ndarray
+            The collocation unknowns, shape (dim x,).
+        p : float
+            The parameter.
+
+        Returns
+        -------
+        FloquetResult
+            Its multipliers (`rotbeam.solve.floquet`).
+        """
         raise NotImplementedError
 
     def dR_dp(self, x: np.ndarray, p: float) -> np.ndarray:
-        """Central difference in p (the residual is smooth in p)."""
+        """dR/dp by a central difference of step 1e-6 max(|p|, 1) (the residual is smooth in p).
+
+        Parameters
+        ----------
+        x : numpy.ndarray
+            The collocation unknowns, shape (dim x,).
+        p : float
+            The parameter.
+
+        Returns
+        -------
+        numpy.ndarray
+            dR/dp, shape (dim x,).
+        """
         h = 1e-6 * max(abs(p), 1.0)
         return (self.residual(x, p + h) - self.residual(x, p - h)) / (2.0 * h)
 
 
 class FirstOrderProblem(BranchProblem):
     """Trigonometric collocation of z' = f(t, z; p) on M instants of the period P(p):
-    R = D Z - f(t_j, Z_j; p), with dR/dZ = D (x) I - blockdiag(J_j)."""
+    R = D Z - f(t_j, Z_j; p), with dR/dZ = D (x) I - blockdiag(J_j).
+
+    The unknowns x are Z, the states at t_j = j P(p) / M, shape (M, dim), flattened.
+
+    Parameters
+    ----------
+    rhs : callable
+        rhs(t, z, p) -> f, shape (dim,).
+    jac : callable
+        jac(t, z, p) -> df/dz, shape (dim, dim).
+    period : callable
+        period(p) -> P, the orbit's period.
+    dim : int
+        Dimension of the state.
+    M : int
+        Collocation instants (odd).
+    """
 
     def __init__(
         self,
@@ -56,7 +122,7 @@ class FirstOrderProblem(BranchProblem):
         period: Callable[[float], float],
         dim: int,
         M: int = 33,
-    ):
+    ) -> None:
         self.rhs, self.jac, self.period, self.dim, self.M = rhs, jac, period, dim, M
         self.D1 = fourier_diff_matrix(M, 1.0)  # for a unit period; scaled by 1 / P(p)
 
@@ -65,12 +131,40 @@ class FirstOrderProblem(BranchProblem):
         return np.arange(self.M) * P / self.M, self.D1 / P
 
     def residual(self, x: np.ndarray, p: float) -> np.ndarray:
+        """The collocation residual D Z - f(t_j, Z_j; p).
+
+        Parameters
+        ----------
+        x : numpy.ndarray
+            Z flattened, shape (M dim,).
+        p : float
+            The parameter.
+
+        Returns
+        -------
+        numpy.ndarray
+            R, shape (M dim,).
+        """
         t, D = self._grid(p)
         Z = x.reshape(self.M, self.dim)
         F = np.array([self.rhs(tj, zj, p) for tj, zj in zip(t, Z, strict=True)])
         return (D @ Z - F).ravel()
 
     def jacobian(self, x: np.ndarray, p: float) -> np.ndarray:
+        """dR/dZ = D (x) I - blockdiag(J_j), dense.
+
+        Parameters
+        ----------
+        x : numpy.ndarray
+            Z flattened, shape (M dim,).
+        p : float
+            The parameter.
+
+        Returns
+        -------
+        numpy.ndarray
+            Shape (M dim, M dim).
+        """
         t, D = self._grid(p)
         Z = x.reshape(self.M, self.dim)
         J = np.kron(D, np.eye(self.dim))
@@ -80,18 +174,70 @@ class FirstOrderProblem(BranchProblem):
         return J
 
     def floquet(self, x: np.ndarray, p: float) -> FloquetResult:
+        """The Floquet multipliers of the orbit Z (`rotbeam.solve.floquet.orbit_floquet`).
+
+        Parameters
+        ----------
+        x : numpy.ndarray
+            Z flattened, shape (M dim,).
+        p : float
+            The parameter.
+
+        Returns
+        -------
+        FloquetResult
+            The multipliers (no defect: the right-hand side is not passed).
+        """
         return orbit_floquet(
             lambda t, z: self.jac(t, z, p), x.reshape(self.M, self.dim), self.period(p)
         )
 
     def samples(self, z0_of_t: Callable[[np.ndarray], np.ndarray], p: float) -> np.ndarray:
-        """x from a function of time (e.g. a time-stepped orbit's dense output)."""
+        """The unknowns x of an orbit given as a function of time (e.g. a time-stepped orbit's
+        dense output): a start for `continue_branch`.
+
+        Parameters
+        ----------
+        z0_of_t : callable
+            z0_of_t(t) for the instants t, shape (M,) -> the states, M dim values in all
+            (reshaped to (M, dim)).
+        p : float
+            The parameter (it sets the period and so the instants).
+
+        Returns
+        -------
+        numpy.ndarray
+            x, shape (M dim,).
+        """
         t, _ = self._grid(p)
         return np.asarray(z0_of_t(t)).reshape(self.M, self.dim).ravel()
 
 
-def newton(problem: BranchProblem, x: np.ndarray, p: float, tol: float = 1e-10, maxiter: int = 30):
-    """Newton on R(x, p) = 0 at fixed p; returns (x, converged)."""
+def newton(
+    problem: BranchProblem, x: np.ndarray, p: float, tol: float = 1e-10, maxiter: int = 30
+) -> tuple[np.ndarray, bool]:
+    """Newton on R(x, p) = 0 at fixed p, with dense solves: the first orbit of a branch.
+
+    Parameters
+    ----------
+    problem : BranchProblem
+        The residual and its Jacobian.
+    x : numpy.ndarray
+        The start, shape (dim x,).
+    p : float
+        The parameter.
+    tol : float
+        Converged when the step is at most tol max(1, max |x|).
+    maxiter : int
+        Most Newton steps.
+
+    Returns
+    -------
+    x : numpy.ndarray
+        The last iterate.
+    converged : bool
+        Whether the step fell below the tolerance.
+    """
     for _ in range(maxiter):
         R = problem.residual(x, p)
         dx = sla.solve(problem.jacobian(x, p), -R)
@@ -103,18 +249,23 @@ def newton(problem: BranchProblem, x: np.ndarray, p: float, tol: float = 1e-10, 
 
 @dataclass
 class BranchPoint:
-    p: float
-    x: np.ndarray
-    floquet: FloquetResult
+    """One orbit on a branch, with its multipliers and the direction the branch takes in p."""
+
+    p: float  #: the parameter
+    x: np.ndarray  #: the orbit's collocation unknowns, flattened
+    floquet: FloquetResult  #: its multipliers
     tangent_p: float  #: dp/ds
 
     @property
     def stable(self) -> bool:
+        """Whether the orbit attracts (`FloquetResult.stable`)."""
         return self.floquet.stable
 
 
 @dataclass
 class Bifurcation:
+    """A bifurcation detected between two consecutive points of a branch."""
+
     kind: str  #: "fold", "period doubling" or "torus"
     p: float  #: estimated parameter value
     index: int  #: branch point just after it
@@ -122,11 +273,21 @@ class Bifurcation:
 
 @dataclass
 class Branch:
+    """A continued branch: its points in the order followed, the bifurcations detected between
+    them, and why the continuation stopped."""
+
     points: list[BranchPoint] = field(default_factory=list)
     bifurcations: list[Bifurcation] = field(default_factory=list)
-    message: str = ""
+    message: str = ""  #: why the continuation stopped
 
     def folds(self) -> list[float]:
+        """The folds of the branch.
+
+        Returns
+        -------
+        list of float
+            The estimated p of every fold, in the order passed.
+        """
         return [b.p for b in self.bifurcations if b.kind == "fold"]
 
     def first_unstable(self) -> int | None:
@@ -215,8 +376,47 @@ def continue_branch(
     on_point: Callable[[BranchPoint], None] | None = None,
     stop: Callable[[Branch], bool] | None = None,
 ) -> Branch:
-    """Follow the orbit x0 at p0 (converged first) while p stays in p_range (and, if given,
-    until `stop(branch)` is true after a point)."""
+    """Follow a periodic orbit in p by pseudo-arclength continuation, through folds.
+
+    Keller's method with a weighted tangent; the step grows by 1.3 after a corrector that
+    converged in at most 4 iterations and halves after a failure.  Folds, period doublings and
+    tori are detected between consecutive points (docs/stability.md, "Branches in f_d").
+
+    Parameters
+    ----------
+    problem : BranchProblem
+        The family of orbits.
+    x0 : numpy.ndarray
+        An orbit at p0 or near it, shape (dim x,); Newton converges it first.
+    p0 : float
+        The parameter to start at.
+    p_range : tuple of float
+        The branch ends at the first point outside this interval (kept as the last point).
+    ds : float
+        First arclength step (weighted, see `x_scale`, `p_scale`).
+    ds_max : float or None
+        Largest step; None: 8 ds.
+    max_points : int
+        Most points on the branch, the first included.
+    p_scale : float
+        p enters the arclength divided by this.
+    x_scale : float
+        x enters it as x_scale times its RMS change (weights x_scale / sqrt(dim x)).
+    direction : float
+        Sign of the first step in p (> 0: increasing).
+    tol : float
+        Corrector tolerance on the weighted step (max-norm).
+    on_point : callable or None
+        on_point(point) after every new point.
+    stop : callable or None
+        stop(branch) after every new point: True ends the branch.
+
+    Returns
+    -------
+    Branch
+        The points with their multipliers and dp/ds, the bifurcations, and why it stopped
+        (message; no points when Newton finds no orbit at p0).
+    """
     branch = Branch()
     x, ok = newton(problem, np.asarray(x0, dtype=float), p0)
     if not ok:

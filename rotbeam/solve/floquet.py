@@ -1,42 +1,13 @@
-r"""Floquet multipliers of a periodic orbit: the monodromy of the variational equations.
+"""Floquet multipliers of a periodic orbit: the monodromy of the variational equations.
 
-For a first-order system z' = f(t, z) with a periodic orbit z*(t) of period P, a perturbation
-obeys y' = J(t) y, J(t) = df/dz (t, z*(t)); its fundamental matrix over one period is the
-monodromy Phi, and its eigenvalues mu are the Floquet multipliers.  The orbit attracts every
-nearby state when max |mu| < 1; a real mu through +1 is a fold (or pitchfork), through -1 a
-period doubling, a complex pair through |mu| = 1 a Neimark-Sacker (torus) bifurcation.
-
-How.  Phi is the product over S equal steps of exp(h J(t_s)), J frozen at each step's midpoint
-(the exponential midpoint rule, the second-order Magnus integrator), with the orbit between
-the collocation instants taken from its trigonometric interpolant.  The fast bending modes are
-propagated exactly by the exponential of their frozen part, so the error is O(h^2) uniformly in
-the stiffness (Hochbruck & Lubich, SIAM J. Numer. Anal. 41 (2003) 945).  The fourth-order
-Magnus step with its commutator term h^2 [J_2, J_1] overflows here: the commutator carries the
-stiffness (measured: |mu| = 7.5 for a stable orbit at S = 17).
-
-The step count.  The first try takes FIRST_STEPS = 12 steps; every third of its exponentials,
-cubed, is the step of the same rule on 4 steps (its midpoint is theirs), so a coarse monodromy
-comes with two matrix products a step and no new exponential.  The first try stands when the
-two agree (`first_try_stands`: |mu|max to SPREAD_TOL, the fixed-point offset to 1 %); else the
-full S = 2 M steps (M the collocation instants, at least 32) are taken.  Calm orbits, most of a
-sweep, need no more than 12 steps: their J(t) varies slowly over the period.  Measured at the
-benchmark scenes and on a Fig. 7 grid column (docs/stability.md, `python3 -m
-rotbeam.paper.floquet_steps`): a kept first try is within 3e-6 of |mu|max converged in S, the
-full count within 1e-4 (6e-5 at the resonant Omega_0 = 5 rad/s, 7 Hz, which takes it).
-Why not Hill's method: the Floquet exponents would be eigenvalues of the (M n)-sized
-collocation pencil (2535 unknowns at N = 40, M = 65), a dense eigenproblem of 5070 with
-spurious exponents to sort out; why not solve_ivp of the matrix ODE: (2n)^2 = 6084 unknowns in
-an implicit stepper.  Here the cost is S Jacobians and S 79 x 79 matrix exponentials.
-
-The defect.  Given the right-hand side too, the same pass measures how far the orbit is from a
-true periodic solution (the certificate of `rotbeam.solve.stability.monodromy_certificate`).  Let
-x(t) be the interpolant, r(t) = x' - f(t, x) its residual (zero at the collocation instants,
-not between them).  The solution from x(0) is x + e with e' = J e - r + O(e^2), e(0) = 0, so the
-one-period map moves x(0) by delta = e(P) = -int_0^P Phi(P, s) r(s) ds.  Each step propagates e
-exactly for J and r frozen at the midpoint: the exponential of the augmented matrix
-[[h J, -h r], [0, 0]] is [[exp(h J), -h phi1(h J) r], [0, 1]], so the stiff modes see r / |lambda|,
-not h r (one 79 x 79 exponential instead of 78 x 78).  The fixed point of the period map is then
-x(0) + w with (I - Phi) w = delta, to first order in delta.
+The monodromy Phi is a product of matrix exponentials exp(h J) over S steps of the period (the
+exponential midpoint rule, second-order Magnus), with J the exact Jacobian on the orbit's
+trigonometric interpolant; its eigenvalues are the multipliers, and max |mu| < 1 means the orbit
+attracts.  The same pass propagates the interpolant's residual: the one-period defect behind the
+certificate of `rotbeam.solve.stability`.  A first try of FIRST_STEPS steps stands when a coarse
+product from the same exponentials agrees with it; otherwise 2 M steps are taken.  Definitions,
+derivation, step counts and checks: docs/stability.md, "How the multipliers are computed" and
+"The monodromy certificate".
 """
 
 from __future__ import annotations
@@ -68,12 +39,18 @@ OFFSET_ATOL = 1e-8
 
 @dataclass
 class FloquetResult:
-    """Multipliers of one periodic orbit, largest |mu| first."""
+    """Multipliers of one periodic orbit, largest |mu| first, with the monodromy they come from.
+
+    `orbit_floquet` and its beam versions make it; `max_abs`, `stable` and `crossing` give the
+    verdict, and `fixed_point_offset` the distance to the true periodic state that the
+    certificate of `rotbeam.solve.stability` asks for.  Times are those of the system the
+    monodromy was built for (dimensionless tau, in units of T, for the beam).
+    """
 
     multipliers: np.ndarray  #: complex, sorted by decreasing modulus
     monodromy: np.ndarray  #: (2n, 2n) fundamental matrix over one period
     steps: int  #: Magnus steps over the period
-    seconds: float
+    seconds: float  #: time the computation took [s] (time.perf_counter)
     method: str = "exponential midpoint (Magnus-2) product of matrix exponentials"
     defect: np.ndarray | None = None  #: one-period map minus identity at the orbit's start
     #: the same rule on a third of the steps (every third step's exponential cubed), whose
@@ -89,8 +66,15 @@ class FloquetResult:
         return abs(self.max_abs - self.coarse.max_abs) if self.coarse is not None else 0.0
 
     def fixed_point_offset(self) -> np.ndarray | None:
-        """w with (I - Phi) w = defect: how far the orbit's start is from the true periodic
-        state, to first order (None without a defect, or when 1 is a multiplier)."""
+        """How far the orbit's start is from the true periodic state, to first order in the
+        defect: w with (I - Phi) w = defect (solved once, then kept).
+
+        Returns
+        -------
+        numpy.ndarray or None
+            w, shape (dim,), in the units of the state (angles, then rates); None without a
+            defect or when the orbit is not stable (I - Phi may then be singular).
+        """
         if not self._offset:
             self._offset = (self._solve_offset(),)
         return self._offset[0]
@@ -102,10 +86,12 @@ class FloquetResult:
 
     @property
     def max_abs(self) -> float:
+        """The largest |mu| (0 without multipliers)."""
         return float(np.abs(self.multipliers[0])) if self.multipliers.size else 0.0
 
     @property
     def stable(self) -> bool:
+        """Whether max |mu| < 1 - STABLE_MARGIN: every small perturbation shrinks each period."""
         return self.max_abs < 1.0 - STABLE_MARGIN
 
     @property
@@ -115,13 +101,27 @@ class FloquetResult:
         return self.max_abs > 1.0 + STABLE_MARGIN
 
     def describe(self) -> str:
+        """The leading multiplier in words, for messages.
+
+        Returns
+        -------
+        str
+            '|mu|max = 0.888269 (complex pair, stable)': the largest modulus, whether the
+            leading multiplier is real or one of a complex pair, and stable or UNSTABLE.
+        """
         mu = self.multipliers[0] if self.multipliers.size else 0.0
         kind = "real" if abs(np.imag(mu)) <= 1e-9 * max(abs(mu), 1e-300) else "complex pair"
         return f"|mu|max = {self.max_abs:.6f} ({kind}, {'stable' if self.stable else 'UNSTABLE'})"
 
     def crossing(self) -> str:
-        """What the leading multiplier does if it leaves the unit circle: fold, period doubling
-        or torus (Neimark-Sacker); '' when stable."""
+        """How the orbit loses stability, from where its leading multiplier leaves the circle.
+
+        Returns
+        -------
+        str
+            "fold" (a real mu > 1), "period doubling" (a real mu < -1), "torus" (a complex
+            pair: Neimark-Sacker), or '' when the orbit is stable.
+        """
         if self.stable:
             return ""
         mu = self.multipliers[0]
@@ -130,6 +130,13 @@ class FloquetResult:
         return "fold" if mu.real > 0 else "period doubling"
 
     def as_dict(self) -> dict:
+        """The columns a result row carries.
+
+        Returns
+        -------
+        dict
+            floquet_max (float, the largest |mu|) and stable (bool).
+        """
         return {"floquet_max": self.max_abs, "stable": self.stable}
 
 
@@ -164,14 +171,50 @@ def _coarse_product(E: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 def multipliers_of(
     Phi: np.ndarray, steps: int, seconds: float, defect: np.ndarray | None = None
 ) -> FloquetResult:
+    """The multipliers of a monodromy matrix, sorted by decreasing modulus.
+
+    Parameters
+    ----------
+    Phi : numpy.ndarray
+        The monodromy, shape (dim, dim).
+    steps : int
+        Magnus steps it was built from (recorded in the result).
+    seconds : float
+        Time it took [s] (recorded).
+    defect : numpy.ndarray or None
+        The orbit's one-period defect, shape (dim,), if measured.
+
+    Returns
+    -------
+    FloquetResult
+        Phi, its eigenvalues largest |mu| first, and the defect.
+    """
     mu = np.linalg.eigvals(Phi)
     mu = mu[np.argsort(-np.abs(mu), kind="stable")]
     return FloquetResult(mu, Phi, steps, seconds, defect=defect)
 
 
 def trig_eval(X: np.ndarray, period: float, t: np.ndarray, derivative: int = 0) -> np.ndarray:
-    """The trigonometric interpolant of X (M equispaced samples of one period, M odd, axis 0)
-    and its `derivative`-th time derivative at the instants t: (len(t), ...)."""
+    """The trigonometric interpolant of equispaced samples, or a time derivative of it, at any
+    instants: the orbit between its collocation instants.
+
+    Parameters
+    ----------
+    X : numpy.ndarray
+        M equispaced samples of one period along axis 0, shape (M, ...), the first at t = 0;
+        M odd (an even M counts its Nyquist term once).
+    period : float
+        The period, in the units of t.
+    t : numpy.ndarray
+        Instants, shape (m,), in the units of `period` (any, not only within one period).
+    derivative : int
+        Order of the time derivative (0: the values).
+
+    Returns
+    -------
+    numpy.ndarray
+        The interpolant's `derivative`-th derivative at t, shape (m, ...).
+    """
     M = X.shape[0]
     C = np.fft.rfft(X, axis=0) / M  # c_0, c_1 .. c_{(M-1)/2}
     k = np.arange(C.shape[0])
@@ -185,11 +228,27 @@ def trig_eval(X: np.ndarray, period: float, t: np.ndarray, derivative: int = 0) 
 
 def first_try_stands(first: FloquetResult, size: float) -> bool:
     """Whether the first try's |mu|max and fixed-point offset are as good as the full step
-    count's: |mu|max within SPREAD_TOL of the coarse product's and within a tenth of its distance
-    from 1 (the spread cannot move the stability verdict), and the offset (I - Phi)^-1 defect
-    within OFFSET_RTOL of the coarse one's or OFFSET_ATOL of the orbit's size (the certificate
-    compares it with 1e-4 of the response).  The entries of Phi may still be off by more: a
-    stiff mode's phase over the period moves them and not |mu| (tests/test_floquet.py)."""
+    count's, judged by their distance from the coarse product of the same exponentials.
+
+    |mu|max must lie within SPREAD_TOL of the coarse product's and within a tenth of its
+    distance from 1 (the spread cannot move the stability verdict), and the offset
+    (I - Phi)^-1 defect within OFFSET_RTOL of the coarse one's or OFFSET_ATOL of the orbit's
+    size (the certificate compares it with 1e-4 of the response).  The entries of Phi may still
+    be off by more: a stiff mode's phase over the period moves them and not |mu|
+    (tests/test_floquet.py; docs/stability.md, "How the multipliers are computed").
+
+    Parameters
+    ----------
+    first : FloquetResult
+        The first try, with its `coarse` product set.
+    size : float
+        The orbit's size, max |z| over its samples (in the units of the state).
+
+    Returns
+    -------
+    bool
+        True when the first try stands; False when the full step count is needed.
+    """
     if first.spread > min(SPREAD_TOL, 0.1 * abs(1.0 - first.max_abs)):
         return False
     w, w_coarse = first.fixed_point_offset(), first.coarse.fixed_point_offset()
@@ -239,16 +298,38 @@ def orbit_floquet(
     rhs: Callable[[float, np.ndarray], np.ndarray] | None = None,
     rows: Callable[[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray]] | None = None,
 ) -> FloquetResult:
-    """Multipliers of the orbit whose states at M equispaced instants are Z (M, dim), for the
-    system with Jacobian jac(t, z); the orbit between the instants is Z's trigonometric
-    interpolant.  With the right-hand side rhs(t, z) the result also carries the interpolant's
-    one-period `defect` (module docstring).  `rows(t, Z)` -> (f (S, dim), J (S, dim, dim))
-    gives both at every step at once instead of jac and rhs (the beam's batched
-    `first_order_rows`).
+    """Floquet multipliers of a periodic orbit of a first-order system z' = f(t, z), given by
+    its states at M equispaced instants of the period.
 
-    `steps` fixes the step count.  Without it the monodromy first tries FIRST_STEPS steps and
-    keeps them when the coarse product (a third of the steps, from the same exponentials) agrees
-    with it (`first_try_stands`); otherwise it takes `default_steps(M)`."""
+    The orbit between the instants is Z's trigonometric interpolant (`trig_eval`).  Without
+    `steps` the monodromy first tries FIRST_STEPS steps and keeps them when the coarse product
+    (a third of the steps, from the same exponentials) agrees with it (`first_try_stands`);
+    otherwise it takes `default_steps(M)` (docs/stability.md, "How the multipliers are
+    computed").
+
+    Parameters
+    ----------
+    jac : callable or None
+        jac(t, z) -> df/dz, shape (dim, dim); None when `rows` is given.
+    Z : numpy.ndarray
+        The orbit at t_j = j P / M, j = 0 .. M-1, shape (M, dim).
+    period : float
+        The period P, in the system's time unit.
+    steps : int or None
+        A fixed number of Magnus steps; None: the first try, else the full count.
+    rhs : callable or None
+        rhs(t, z) -> f, shape (dim,).  With it the result also carries the interpolant's
+        one-period `defect` (docs/stability.md, "The monodromy certificate").
+    rows : callable or None
+        rows(t, Z) -> (f (S, dim), J (S, dim, dim)) at S instants at once, in place of jac and
+        rhs (the beam's batched `first_order_rows`).
+
+    Returns
+    -------
+    FloquetResult
+        The multipliers, the monodromy, the steps taken and, with rhs or rows, the defect; a
+        kept first try also carries its coarse product (`coarse`).
+    """
     t0 = time.perf_counter()
     if steps is not None:
         Phi, defect, _ = _monodromy(jac, Z, period, steps, rhs, rows, coarse=False)
@@ -270,9 +351,29 @@ def beam_floquet(
     theta_t: np.ndarray,
     steps: int | None = None,
 ) -> FloquetResult:
-    """Multipliers of the beam's orbit sampled at M equispaced instants of the drive period,
-    theta and theta_t (n, M), with the model's exact Jacobians (`first_order_rows`, all steps
-    in one batch), and the orbit's one-period defect."""
+    """Floquet multipliers and one-period defect of a collocated orbit of the beam.
+
+    The Jacobians and right-hand sides of all steps come from the model in one batch
+    (`first_order_rows`); the state is z = (Theta, Theta_t), dim = 2 n.
+
+    Parameters
+    ----------
+    model : DiscreteModel
+        The model and its drive; the period is its `dl.period` (dimensionless, units of T).
+    theta : numpy.ndarray
+        Angles [rad] at M equispaced instants of the drive period, the first at tau = 0,
+        shape (n, M).
+    theta_t : numpy.ndarray
+        Their rates d theta / d tau at the same instants, shape (n, M).
+    steps : int or None
+        A fixed number of Magnus steps; None: the first try, else the full count
+        (`orbit_floquet`).
+
+    Returns
+    -------
+    FloquetResult
+        The multipliers, the (2 n, 2 n) monodromy and the defect.
+    """
     n, dl = model.n, model.dl
 
     def rows(t: np.ndarray, Z: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -286,8 +387,26 @@ def beam_floquet(
 def sampled_beam_floquet(
     model: DiscreteModel, theta: np.ndarray, steps: int | None = None
 ) -> FloquetResult:
-    """Multipliers of a time-stepped periodic orbit from its angles at m equispaced instants of
-    one period (n, m); the velocities are the samples' spectral derivative."""
+    """Floquet multipliers of a time-stepped periodic orbit, from its angles over one period.
+
+    The rates are the samples' spectral derivative; an even m is first resampled to m + 1
+    instants (no Nyquist term, whose derivative is undefined).
+
+    Parameters
+    ----------
+    model : DiscreteModel
+        The model and its drive (period `dl.period`, dimensionless).
+    theta : numpy.ndarray
+        Angles [rad] at m equispaced instants of one drive period, the first at a whole number
+        of periods, shape (n, m).
+    steps : int or None
+        A fixed number of Magnus steps; None: the first try, else the full count.
+
+    Returns
+    -------
+    FloquetResult
+        The multipliers and the defect of the samples' interpolant.
+    """
     X, dl = theta.T, model.dl
     if X.shape[0] % 2 == 0:  # an odd count: no Nyquist term, whose derivative is undefined
         X = trig_eval(X, dl.period, np.arange(X.shape[0] + 1) * dl.period / (X.shape[0] + 1))

@@ -1,19 +1,10 @@
 r"""Largest Lyapunov exponent and stroboscopic (Poincare) samples of a trajectory.
 
-Benettin's method: the state z and one tangent vector v are integrated together,
-z' = f(t, z), v' = J(t, z) v, over intervals of length T (the drive period for a driven
-system); after each interval v is renormalised and log |v| accumulated:
-lambda ~ (1 / (K T)) sum_k log |v_k|.  The stiff stepper (Radau) gets the block-diagonal
-diag(J, J) as its Jacobian: that ignores d(J v)/dz, which changes only how fast its simplified
-Newton converges, not the accuracy (the error control sees the exact right-hand side).
-Convergence is reported as the spread of the running estimate over the last half of the run
-(max - min), an honest error bar for the finite-time estimate.
-
-The running estimate averages from the first interval on, so a transient that the run started
-in (a chaotic transient before the motion settles) stays in it and decays only like 1 / K.
-`late` is the mean growth over the second half of the intervals alone, and `late_spread` the
-difference of its third and fourth quarters: what the motion does once the first half is
-discarded as further transient.
+Benettin's method: the state and one tangent vector are integrated together over intervals of
+one drive period, the tangent renormalised after each and its log growth accumulated.  Beside
+the running mean from the first interval, which keeps a transient the run began in, the result
+gives the mean growth over the second half of the intervals (`LyapunovResult.late`).  Method
+and checks: docs/stability.md, "When there is no stable periodic state".
 """
 
 from __future__ import annotations
@@ -28,14 +19,18 @@ import numpy as np
 
 @dataclass
 class LyapunovResult:
+    """Benettin's estimate of the largest Lyapunov exponent, its convergence, and the
+    stroboscopic section of the run.  Rates are per unit of the system's time (per unit tau,
+    dimensionless, for the beam: divide by T for 1/s)."""
+
     exponent: float  #: largest Lyapunov exponent (per unit of the system's time)
     spread: float  #: max - min of the running estimate over the last half of the intervals
-    intervals: int
-    interval: float
+    intervals: int  #: intervals integrated (fewer than asked when stopped early)
+    interval: float  #: length of one interval (the drive period)
     running: np.ndarray  #: estimate after each interval
     section: np.ndarray  #: (intervals + 1, dim) states at t0 + k T (stroboscopic section)
-    seconds: float
-    message: str = ""
+    seconds: float  #: wall time of the run [s]
+    message: str = ""  #: why it stopped early, else the number of intervals
     samples: list[np.ndarray] = field(default_factory=list)  #: optional per-interval samples
     late: float = math.nan  #: mean growth rate over the second half of the intervals
     late_spread: float = math.inf  #: |third quarter's rate - fourth quarter's|
@@ -56,11 +51,48 @@ def largest_lyapunov(
     v0: np.ndarray | None = None,
     progress: Callable[[int], None] | None = None,
 ) -> LyapunovResult:
-    """Benettin's estimate over `intervals` intervals of length `interval` from z0 at t0.
+    """Benettin's estimate of the largest Lyapunov exponent of z' = f(t, z) from z0 at t0.
 
-    With samples_per_interval > 0 the states at that many equispaced instants of every interval
-    are kept (for spectra).  `deadline` (time.perf_counter) stops early; the result says so.
-    `progress(k)` is called after the k-th interval.
+    The state and one tangent vector are integrated together (`tangent_system`), one
+    `solve_ivp` per interval; after each interval the tangent is renormalised and its log
+    growth kept.  Never raises for a solver failure: the result's message says where it
+    stopped.
+
+    Parameters
+    ----------
+    rhs : callable
+        rhs(t, z) -> f, shape (dim,).
+    jac : callable
+        jac(t, z) -> df/dz, shape (dim, dim).
+    z0 : numpy.ndarray
+        Initial state, shape (dim,).
+    interval : float
+        Length of one interval (the drive period), in the system's time unit.
+    intervals : int
+        Number of intervals K.
+    t0 : float
+        Time at z0.
+    method : str
+        `solve_ivp` method; Radau, BDF and LSODA get the Jacobian of the augmented system.
+    rtol : float
+        Relative tolerance of the stepper.
+    atol : float or numpy.ndarray
+        Absolute tolerance of the state, scalar or shape (dim,); the tangent's is 1e-10.
+    samples_per_interval : int
+        With m > 0, the states at m equispaced instants of every interval are kept (for
+        spectra).
+    deadline : float or None
+        A `time.perf_counter` value after which the run stops at the end of an interval.
+    v0 : numpy.ndarray or None
+        The initial tangent, shape (dim,) (normalised here); None: a fixed pseudo-random one.
+    progress : callable or None
+        progress(k) after the k-th interval.
+
+    Returns
+    -------
+    LyapunovResult
+        The exponent (running mean after the last interval), its spread, the late rate, the
+        section z(t0 + k interval) and the samples (`benettin_result`).
     """
     from scipy.integrate import solve_ivp  # here: only a time-stepped run needs it
 
@@ -103,8 +135,28 @@ def largest_lyapunov(
 
 
 def tangent_system(rhs: Callable, jac: Callable, d: int) -> tuple[Callable, Callable]:
-    """The state and one tangent vector together, y = (z, v): y' = (f(t, z), J(t, z) v), and
-    the Jacobian of that system (block diagonal, J twice) for the implicit steppers."""
+    """The state and one tangent vector as one system, y = (z, v): y' = (f(t, z), J(t, z) v).
+
+    The Jacobian given to the implicit steppers is diag(J, J): it leaves out d(J v)/dz, which
+    changes only how fast their simplified Newton converges, not the accuracy (the error control
+    sees the exact right-hand side).
+
+    Parameters
+    ----------
+    rhs : callable
+        rhs(t, z) -> f, shape (d,).
+    jac : callable
+        jac(t, z) -> df/dz, shape (d, d).
+    d : int
+        Dimension of the state.
+
+    Returns
+    -------
+    aug : callable
+        aug(t, y) -> y', shape (2 d,).
+    aug_jac : callable
+        aug_jac(t, y) -> diag(J, J), shape (2 d, 2 d).
+    """
 
     def aug(t, y):
         return np.concatenate([rhs(t, y[:d]), jac(t, y[:d]) @ y[d:]])
@@ -122,8 +174,30 @@ def tangent_system(rhs: Callable, jac: Callable, d: int) -> tuple[Callable, Call
 def benettin_result(
     logs: list[float], interval: float, section: list, samples: list, seconds: float, msg: str
 ) -> LyapunovResult:
-    """The running estimate (mean log growth per unit time after each interval), the exponent
-    (its last value) and its spread over the second half of the intervals (the convergence)."""
+    """The result of a Benettin run from the log growth of the tangent over each interval.
+
+    Parameters
+    ----------
+    logs : list of float
+        log |v_k| over each of the K intervals (the tangent renormalised after each).
+    interval : float
+        Length of one interval.
+    section : list of numpy.ndarray
+        The states at the start and at the end of every interval, K + 1 of shape (dim,).
+    samples : list of numpy.ndarray
+        Per-interval samples (may be empty).
+    seconds : float
+        Wall time of the run [s].
+    msg : str
+        Why the run stopped early ('' when it did not).
+
+    Returns
+    -------
+    LyapunovResult
+        The running estimate (mean log growth per unit time after each interval), the exponent
+        (its last value), its spread max - min over the second half of the intervals (inf with
+        fewer than 2), and the late rate and its spread (`late_rate`).
+    """
     K = len(logs)
     running = np.cumsum(logs) / (interval * np.arange(1, K + 1)) if K else np.array([])
     half = running[K // 2 :] if K else np.array([math.nan])
@@ -144,9 +218,23 @@ def benettin_result(
 
 
 def late_rate(logs: np.ndarray, interval: float) -> tuple[float, float]:
-    """Mean log growth per unit time over the second half of the intervals, and the difference
-    of the rates over its two halves (the third and fourth quarters of the run); (nan, inf)
-    with fewer than four intervals."""
+    """The growth rate of the tangent once the first half of the run is discarded as transient.
+
+    Parameters
+    ----------
+    logs : numpy.ndarray
+        log |v_k| over each interval, shape (K,).
+    interval : float
+        Length of one interval.
+
+    Returns
+    -------
+    rate : float
+        Mean log growth per unit time over the second half of the intervals (nan with fewer
+        than four intervals).
+    spread : float
+        |rate over the third quarter - rate over the fourth| (inf with fewer than four).
+    """
     K = logs.size
     if K < 4:
         return math.nan, math.inf

@@ -1,19 +1,11 @@
 r"""Periodic steady state by trigonometric collocation (harmonic balance in the time domain).
 
-The steady response to a drive of period P is sought directly as Theta at M equally spaced
-instants tau_j = j P / M, with time derivatives by the Fourier (spectral) differentiation matrix
-D (exact for trigonometric polynomials of degree < M/2).  The residual of Eq. (discretizedEq)
-
-    R_j = M(Theta_j) (A_j + eta V_j) + B(Theta_j) (V_j^2 + 2 lam_j V_j [Coriolis]) + K Theta_j
-          + L(Theta_j; lam_j, lam_t_j),        V = D Theta,  A = D^2 Theta,
-
-is driven to zero by Newton with the exact block Jacobian
-J[j, k] = delta_jk dR_j/dTheta_j + D_jk dR_j/dV_j + (D^2)_jk M(Theta_j).
-
-The cost does not depend on the damping (no transient to wait for).  It finds *a* periodic
-solution, not necessarily the one the beam settles on: `rotbeam.solve.steady.steady_state` with
-start="periodic" uses it as the initial state and keeps integrating until its transient criterion
-holds, so an unstable or wrong orbit is left behind rather than reported.
+The orbit of the drive period is sought directly as Theta at M equally spaced instants, with
+time derivatives by the Fourier differentiation matrix, and the collocated equations of motion
+are solved by damped Newton (dense LU for small problems, else GMRES preconditioned by the
+time-averaged Jacobian).  The cost does not depend on the damping, and the result is *a*
+periodic solution, which `rotbeam.solve.steady` then checks.  The residual, its Jacobian and
+the solver: docs/numerics.md, "Trigonometric collocation".
 """
 
 from __future__ import annotations
@@ -32,22 +24,33 @@ from .spectral import fourier_diff_matrix, harmonic_tail, trig_interpolate
 
 @dataclass
 class PeriodicResult:
+    """A collocated periodic orbit and how Newton got there (times in units of T, angles in
+    rad)."""
+
     tau: np.ndarray  #: collocation instants over one period
     theta: np.ndarray  #: (N-1, M)
-    theta_t: np.ndarray  #: (N-1, M)
-    converged: bool
-    iterations: int
-    residual: float
+    theta_t: np.ndarray  #: (N-1, M) d theta / d tau, the spectral derivative
+    converged: bool  #: Newton met its step tolerance
+    iterations: int  #: Newton steps
+    residual: float  #: max |R| at the last iterate
     harmonic_tail: float  #: size of the upper half of the spectrum relative to the whole
-    M: int
-    message: str
+    M: int  #: collocation instants
+    message: str  #: how Newton ended
     krylov_iterations: int = 0  #: GMRES iterations in all Newton steps (0: dense solves)
 
 
 class Collocation:
-    """Residual and Jacobian of the collocated periodic problem for one scene and grid."""
+    """Residual and Jacobian of the collocated periodic problem for one scene and grid.
 
-    def __init__(self, model: DiscreteModel, M: int):
+    Parameters
+    ----------
+    model : DiscreteModel
+        The model and its drive (period `dl.period`, dimensionless).
+    M : int
+        Collocation instants tau_j = j P / M (odd).
+    """
+
+    def __init__(self, model: DiscreteModel, M: int) -> None:
         self.model = model
         self.dl = dl = model.dl
         self.M = M
@@ -73,7 +76,18 @@ class Collocation:
         return st
 
     def residual(self, X: np.ndarray) -> np.ndarray:
-        """X: (M, n) -> R (M, n)."""
+        """The residual of the equations of motion at the collocation instants.
+
+        Parameters
+        ----------
+        X : numpy.ndarray
+            Theta [rad] at the instants, shape (M, n).
+
+        Returns
+        -------
+        numpy.ndarray
+            R_j (dimensionless torques), shape (M, n); zero on a collocated orbit.
+        """
         m = self.model
         V, A, Mm, Bm, v, S, damp = self._state(X)
         a = A + m.eta * V if damp is None else A
@@ -86,8 +100,23 @@ class Collocation:
         return R
 
     def jacobian_blocks(self, X: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """The Jacobian at X as (M, n, n) block sets: J = diag(L_j) + diag(C_j) D + diag(M_j) D^2
-        (reusing the residual's work when X was its last argument)."""
+        """The Jacobian at X as three block sets: J = diag(L_j) + diag(C_j) D + diag(M_j) D^2
+        (reusing the residual's work when X was its last argument).
+
+        Parameters
+        ----------
+        X : numpy.ndarray
+            Theta [rad] at the instants, shape (M, n).
+
+        Returns
+        -------
+        L : numpy.ndarray
+            dR_j / dTheta_j, shape (M, n, n).
+        C : numpy.ndarray
+            dR_j / dV_j, shape (M, n, n).
+        Mm : numpy.ndarray
+            The mass matrices M(Theta_j), shape (M, n, n).
+        """
         m = self.model
         n = m.n
         V, A, Mm, Bm, v, _, damp = self._state(X)
@@ -108,8 +137,19 @@ class Collocation:
             Lj[:, idx, idx] -= m.eta * np.einsum("jik,jk->ji", Bd, V)
         return Lj, Cj, Mm
 
-    def dense_jacobian(self, blocks) -> np.ndarray:
-        """(M n, M n) matrix of the block Jacobian (for small problems and tests)."""
+    def dense_jacobian(self, blocks: tuple[np.ndarray, np.ndarray, np.ndarray]) -> np.ndarray:
+        """The block Jacobian as one dense matrix (for small problems and tests).
+
+        Parameters
+        ----------
+        blocks : tuple of numpy.ndarray
+            (L, C, Mm) from `jacobian_blocks`.
+
+        Returns
+        -------
+        numpy.ndarray
+            Shape (M n, M n), unknowns ordered instant by instant.
+        """
         Lj, Cj, Mm = blocks
         M, n = self.M, self.model.n
         J = self.D2[:, None, :, None] * Mm[:, :, None, :]
@@ -118,8 +158,23 @@ class Collocation:
             J[j, :, j, :] += Lj[j]
         return J.reshape(M * n, M * n)
 
-    def jacobian_times(self, blocks, Y: np.ndarray) -> np.ndarray:
-        """J Y without forming J: O(M n^2 + M^2 n)."""
+    def jacobian_times(
+        self, blocks: tuple[np.ndarray, np.ndarray, np.ndarray], Y: np.ndarray
+    ) -> np.ndarray:
+        """J Y without forming J: O(M n^2 + M^2 n).
+
+        Parameters
+        ----------
+        blocks : tuple of numpy.ndarray
+            (L, C, Mm) from `jacobian_blocks`.
+        Y : numpy.ndarray
+            Shape (M, n).
+
+        Returns
+        -------
+        numpy.ndarray
+            J Y, shape (M, n).
+        """
         Lj, Cj, Mm = blocks
         return (
             np.einsum("jik,jk->ji", Lj, Y)
@@ -127,12 +182,22 @@ class Collocation:
             + np.einsum("jik,jk->ji", Mm, self.D2 @ Y)
         )
 
-    def averaged_inverse(self, blocks):
+    def averaged_inverse(self, blocks: tuple[np.ndarray, np.ndarray, np.ndarray]):
         """Solver of the time-averaged (block-circulant) Jacobian, diagonal in Fourier space.
 
         D is exact on the M-point trigonometric polynomials, so with the blocks replaced by their
         means the Jacobian decouples into one n x n complex system per harmonic k:
         (L + i w_k C - w_k^2 M) Y_k = R_k, w_k = 2 pi k / P.  A preconditioner for GMRES.
+
+        Parameters
+        ----------
+        blocks : tuple of numpy.ndarray
+            (L, C, Mm) from `jacobian_blocks`; their means over the instants are used.
+
+        Returns
+        -------
+        callable
+            solve(R) -> Y, both of shape (M, n): the averaged Jacobian's inverse applied to R.
         """
         Lb, Cb, Mb = (b.mean(axis=0) for b in blocks)
         M = self.M
@@ -207,8 +272,21 @@ class _NewtonDirections:
 
 
 def linear_guess(model: DiscreteModel, tau: np.ndarray) -> np.ndarray:
-    """The linearised model's harmonic response at the instants `tau`, shape (len(tau), n): the
-    start of Newton without a neighbouring orbit."""
+    """The linearised model's harmonic response: the start of Newton without a neighbouring
+    orbit.
+
+    Parameters
+    ----------
+    model : DiscreteModel
+        The model and its drive.
+    tau : numpy.ndarray
+        Instants (units of T), shape (m,).
+
+    Returns
+    -------
+    numpy.ndarray
+        Theta [rad] at tau, shape (m, n).
+    """
     w = model.dl.omega
     out = np.zeros((np.size(tau), model.n))
     for k, amp in linear_forced_response(model).items():
@@ -246,6 +324,12 @@ def solve_periodic(
     Returns
     -------
     PeriodicResult
+        The orbit at the M instants, its rates, whether Newton converged and the harmonic tail.
+
+    Raises
+    ------
+    ValueError
+        For another `linear`.
     """
     if linear not in LINEAR_SOLVERS:
         raise ValueError(f"linear must be one of {LINEAR_SOLVERS}, got {linear!r}")
@@ -269,7 +353,22 @@ def solve_periodic(
 
 
 def refined(model: DiscreteModel, res: PeriodicResult, rtol: float = 1e-10) -> PeriodicResult:
-    """The orbit `res` solved again on 2M - 1 instants, from its trigonometric interpolant."""
+    """The orbit solved again on 2M - 1 instants, from its trigonometric interpolant.
+
+    Parameters
+    ----------
+    model : DiscreteModel
+        The model and its drive.
+    res : PeriodicResult
+        The orbit on M instants.
+    rtol : float
+        Newton's relative step tolerance.
+
+    Returns
+    -------
+    PeriodicResult
+        The orbit on 2M - 1 instants.
+    """
     M = 2 * res.M - 1
     return solve_periodic(model, M, guess=trig_interpolate(res.theta.T, M), rtol=rtol)
 
@@ -317,6 +416,7 @@ def solve_periodic_adaptive(
     Returns
     -------
     PeriodicResult
+        The last orbit; its message says when the tail stayed above `tail_tol` at M_max.
     """
     M = M0 if M0 % 2 else M0 + 1
     if guess is not None:

@@ -19,10 +19,10 @@ class QuasiStaticError(RuntimeError):
 class StaticResult:
     """One static equilibrium: the angles and how Newton got there."""
 
-    theta: np.ndarray
+    theta: np.ndarray  #: angles [rad], shape (n,)
     converged: bool
-    iterations: int
-    residual: float
+    iterations: int  #: Newton steps (of the last solve)
+    residual: float  #: max |residual| (dimensionless torques)
     message: str
 
 
@@ -47,7 +47,31 @@ def solve_static(
     rtol: float = 1e-11,
     maxiter: int = 30,
 ) -> StaticResult:
-    """Static equilibrium at constant (lam, lam_dot); load continuation if Newton stalls."""
+    """The static equilibrium under constant loads, by Newton; with a load ramp if it stalls.
+
+    Where Newton from `theta0` does not converge, the loads are ramped from zero (lam by
+    sqrt(t), lam_dot by t) in 4, 16, ... 4096 steps, each from the last equilibrium.
+
+    Parameters
+    ----------
+    model : DiscreteModel
+        The model (its static equations and effects).
+    lam : float
+        Dimensionless angular velocity Omega T.
+    lam_dot : float
+        Its rate d lam / d tau (the Euler load).
+    theta0 : numpy.ndarray or None
+        Start, shape (n,); None: the straight beam.
+    rtol : float
+        Newton's relative step tolerance.
+    maxiter : int
+        Most Newton steps of one solve.
+
+    Returns
+    -------
+    StaticResult
+        The angles and whether (and how) Newton converged.
+    """
     guess = np.zeros(model.n) if theta0 is None else np.array(theta0, dtype=float)
     res = _newton(model, lam, lam_dot, guess, rtol, maxiter)
     if res.converged:
@@ -84,12 +108,31 @@ def batched_static(
 ) -> np.ndarray | None:
     """Static equilibria at many (lam, lam_dot) at once: Newton from the straight beam, all
     instants in one batched solve.  The same residual and Jacobian as `solve_static`
-    (vectorised); None unless every instant converges (callers then use the robust path).
+    (vectorised).
 
     While every angle stays below CHORD_MAX_ANGLE the Jacobian built at the straight beam is
     kept (chord Newton): it changes only at second order in Theta (1 % at 0.1 rad), so the
     iterations contract almost as fast as Newton's and skip most of the cost, the assembly and
     inversion of the m Jacobians.  Larger angles get plain Newton.
+
+    Parameters
+    ----------
+    model : DiscreteModel
+        The model.
+    lam : numpy.ndarray
+        Dimensionless angular velocity Omega T at each instant, shape (m,).
+    lam_dot : numpy.ndarray
+        Its rate d lam / d tau, shape (m,).
+    rtol : float
+        Newton's relative step tolerance, met by every instant.
+    maxiter : int
+        Most Newton steps.
+
+    Returns
+    -------
+    numpy.ndarray or None
+        Angles [rad], shape (m, n); None unless every instant converges (callers then take the
+        robust path) or when a Jacobian is singular or an iterate not finite.
     """
     theta = np.zeros((lam.size, model.n))
     inverse = None

@@ -1,6 +1,6 @@
 """Trigonometric (Fourier) tools on M equispaced instants of one period.
 
-Shared by the periodic collocation (`rotbeam.periodic`) and the steady state it seeds
+Shared by the periodic collocation (`rotbeam.solve.periodic`) and the steady state it seeds
 (`rotbeam.solve.steady`): differentiation, interpolation to other instants and the harmonic tail
 that says whether M instants resolve the signal.
 """
@@ -13,7 +13,26 @@ import numpy as np
 
 
 def fourier_diff_matrix(M: int, period: float) -> np.ndarray:
-    """First-derivative matrix on M equispaced points of a period (M odd: no Nyquist mode)."""
+    """The Fourier (spectral) first-derivative matrix on M equispaced points of a period:
+    exact for trigonometric polynomials of degree < M / 2.
+
+    Parameters
+    ----------
+    M : int
+        Number of points, odd (no Nyquist mode).
+    period : float
+        The period, in any time unit.
+
+    Returns
+    -------
+    numpy.ndarray
+        D, shape (M, M): (D X)_j is dX/dt at t_j = j period / M, per unit of that time.
+
+    Raises
+    ------
+    ValueError
+        For an even M.
+    """
     if M % 2 == 0:
         raise ValueError("use an odd number of collocation points")
     h = 2.0 * math.pi / M
@@ -26,14 +45,40 @@ def fourier_diff_matrix(M: int, period: float) -> np.ndarray:
 
 
 def trig_interpolate(X: np.ndarray, m: int) -> np.ndarray:
-    """Values at m equispaced instants of the trigonometric interpolant of X (M, ...), M odd."""
+    """The trigonometric interpolant of equispaced samples, resampled at another count.
+
+    Parameters
+    ----------
+    X : numpy.ndarray
+        M equispaced samples of one period along axis 0, shape (M, ...), M odd.
+    m : int
+        Number of equispaced instants wanted (the first at the same time as X's).
+
+    Returns
+    -------
+    numpy.ndarray
+        The interpolant at the m instants, shape (m, ...).
+    """
     M = X.shape[0]
     C = np.fft.rfft(X, axis=0)
     return np.fft.irfft(C, n=m, axis=0) * (m / M)
 
 
 def harmonic_tail(X: np.ndarray) -> float:
-    """Size of the upper half of the spectrum of X (M, ...) relative to the whole (0: exact)."""
+    """Whether M instants resolve a periodic signal: the size of the upper half of its spectrum
+    relative to the whole.
+
+    Parameters
+    ----------
+    X : numpy.ndarray
+        M equispaced samples of one period along axis 0, shape (M, ...).
+
+    Returns
+    -------
+    float
+        The 2-norm of the harmonics k >= (M // 2 + 1) // 2 over the 2-norm of all (0 for a zero
+        signal).
+    """
     C = np.abs(np.fft.rfft(X, axis=0))
     total = float(np.sqrt(np.sum(C**2)))
     if total == 0.0:

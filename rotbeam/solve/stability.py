@@ -40,15 +40,48 @@ def orbit_stability(
     periodic: PeriodicResult | None,
     steps: int | None = None,
 ) -> FloquetResult | None:
-    """Multipliers of the collocated orbit, None when there is no converged one (`steps` as in
-    `rotbeam.solve.floquet.orbit_floquet`)."""
+    """Floquet multipliers and defect of a collocated orbit, before any time stepping.
+
+    Parameters
+    ----------
+    model : DiscreteModel
+        The model and its drive.
+    periodic : PeriodicResult or None
+        The collocated orbit (`rotbeam.solve.periodic`).
+    steps : int or None
+        A fixed number of Magnus steps; None: the first try, else the full count
+        (`rotbeam.solve.floquet.orbit_floquet`).
+
+    Returns
+    -------
+    FloquetResult or None
+        The orbit's multipliers; None when there is no orbit or it did not converge.
+    """
     if periodic is None or not periodic.converged:
         return None
     return beam_floquet(model, periodic.theta, periodic.theta_t, steps)
 
 
 def leave_orbit(z: np.ndarray, fl: FloquetResult, size: float) -> np.ndarray:
-    """z pushed by LEAVE_FRACTION * size along the leading Floquet vector (its real part)."""
+    """The start of time stepping off an unstable orbit: z pushed along its most unstable
+    Floquet direction, so that the stepper does not sit on the orbit for as long as its slow
+    growth would let it pass the transient check.
+
+    Parameters
+    ----------
+    z : numpy.ndarray
+        The orbit's state (Theta, Theta_t) at tau = 0, shape (2 n,).
+    fl : FloquetResult
+        Its multipliers and monodromy.
+    size : float
+        The response's size, max |Theta| [rad].
+
+    Returns
+    -------
+    numpy.ndarray
+        z + LEAVE_FRACTION * size * v, shape (2 n,), v the leading eigenvector of the monodromy
+        (its real part, else its imaginary part) scaled to max |v_Theta| = 1.
+    """
     w, V = np.linalg.eig(fl.monodromy)
     v = np.real(V[:, int(np.argmax(np.abs(w)))])
     if not np.any(v):
@@ -59,7 +92,21 @@ def leave_orbit(z: np.ndarray, fl: FloquetResult, size: float) -> np.ndarray:
 
 
 def window_stability(model: DiscreteModel, theta_one_period: np.ndarray) -> FloquetResult | None:
-    """Multipliers of a time-stepped steady orbit from one period of its samples (n, m)."""
+    """Floquet multipliers of the orbit time stepping settled on, from one period of samples.
+
+    Parameters
+    ----------
+    model : DiscreteModel
+        The model and its drive.
+    theta_one_period : numpy.ndarray
+        Angles [rad] at m equispaced instants of the last drive period, shape (n, m).
+
+    Returns
+    -------
+    FloquetResult or None
+        The multipliers (`rotbeam.solve.floquet.sampled_beam_floquet`); None with fewer than 8
+        samples.
+    """
     if theta_one_period.ndim != 2 or theta_one_period.shape[1] < 8:
         return None
     return sampled_beam_floquet(model, theta_one_period)
@@ -82,6 +129,14 @@ class Certificate:
         return not self.certified and self.offset <= self.limit
 
     def describe(self) -> str:
+        """The certificate in words, for messages.
+
+        Returns
+        -------
+        str
+            E.g. 'monodromy offset estimate 3.5e-06 <= 1e-05' (with ' + spread' when a coarse
+            estimate is beside it; '>' when it fails).
+        """
         verdict = "<=" if self.certified else ">"
         spread = f" + {self.spread:.2g}" if self.spread else ""
         return f"monodromy offset estimate {self.offset:.2g}{spread} {verdict} {self.limit:.2g}"
@@ -96,14 +151,34 @@ def _relative(w: np.ndarray, size: float, wref: float) -> float:
 def monodromy_certificate(
     fl: FloquetResult | None, theta: np.ndarray, ss_tol: float, wref: float
 ) -> Certificate | None:
-    """Certificate of an attracting orbit (theta: its angles, (n, M)) from the defect its
-    multipliers carry; None when there is none to give (no defect, or not stable).
+    """Whether an attracting collocated orbit is the steady state without time stepping.
 
     The fixed point of the period map is the orbit's start plus w, (I - Phi) w = defect (first
     order).  |w| (max-norm, velocities divided by `wref`, as the time-stepped transient bound)
     relative to max |Theta| must be below ss_tol / CERTIFICATE_SAFETY: the same quantity the
     verification period bounds by d rho / (1 - rho), with the margin of an estimate.  With a
-    coarse monodromy beside it, the distance between the two estimates is added."""
+    coarse monodromy beside it, the distance between the two estimates is added
+    (docs/stability.md, "The monodromy certificate").
+
+    Parameters
+    ----------
+    fl : FloquetResult or None
+        The orbit's multipliers, with the defect they carry.
+    theta : numpy.ndarray
+        The orbit's angles [rad], shape (n, M): their largest |value| is the response's size.
+    ss_tol : float
+        The steady-state tolerance (relative remaining transient).
+    wref : float
+        Rates d Theta / d tau are compared divided by this (max(omega, 1), omega the
+        dimensionless drive frequency).
+
+    Returns
+    -------
+    Certificate or None
+        The offset estimate, its limit, the spread and the verdict; None when there is no
+        certificate to give (no multipliers, no defect, an orbit that is not stable, or an
+        offset that is not finite).
+    """
     w = fl.fixed_point_offset() if fl is not None else None
     if w is None or not np.all(np.isfinite(w)):
         return None
@@ -118,7 +193,19 @@ def monodromy_certificate(
 
 
 def stability_note(fl: FloquetResult | None) -> str:
-    """'; Floquet |mu|max = ...' for the message, '' without multipliers."""
+    """The words a steady-state message gains from the multipliers.
+
+    Parameters
+    ----------
+    fl : FloquetResult or None
+        The multipliers of the reported orbit.
+
+    Returns
+    -------
+    str
+        '; Floquet |mu|max = ... (..., stable)', with ', fold instability' (or period doubling,
+        torus) when unstable; '' without multipliers.
+    """
     if fl is None:
         return ""
     what = "" if fl.stable else f", {fl.crossing()} instability"

@@ -13,17 +13,32 @@ from ..model.params import Effects
 
 @dataclass
 class BVPSolution:
-    s: np.ndarray
-    theta: np.ndarray
-    x: np.ndarray
-    y: np.ndarray
-    nx: np.ndarray
-    ny: np.ndarray
-    success: bool
+    """The continuum static elastica at the nodes s: angle, shape and internal force, all
+    dimensionless (lengths in units of L, forces in units of EI / L^2)."""
+
+    s: np.ndarray  #: arclength nodes on [0, 1]
+    theta: np.ndarray  #: angle [rad]
+    x: np.ndarray  #: radial position from the clamp
+    y: np.ndarray  #: deflection
+    nx: np.ndarray  #: internal force, x component
+    ny: np.ndarray  #: internal force, y component
+    success: bool  #: scipy's solve_bvp converged
     message: str
     sol: object  #: scipy's result (callable `sol` on [0, 1])
 
     def y_at(self, s: float) -> float:
+        """The deflection y / L at any arclength, from scipy's continuous solution.
+
+        Parameters
+        ----------
+        s : float
+            Arclength in [0, 1] (units of L).
+
+        Returns
+        -------
+        float
+            y / L at s.
+        """
         return float(self.sol.sol(s)[3] * self._eps)
 
     _eps: float = 1.0
@@ -38,13 +53,43 @@ def solve_static_bvp(
     nodes: int = 101,
     guess: BVPSolution | None = None,
 ) -> BVPSolution:
-    # Over 60 lines as one named step: the equations, boundary conditions and first guess of the
-    # BVP share the load scale eps and exist only for this one solve_bvp call.
-    """The continuum static elastica under constant (lam, lam_dot), by scipy.integrate.solve_bvp.
+    """The continuum static elastica under constant (lam, lam_dot), by scipy.integrate.solve_bvp:
+    the counterpart of the paper's bvp4c and the tests' reference for the discrete quasi-static
+    solver.
 
     Unknowns (theta, theta_s, x, y, n_x, n_y); theta, theta_s, y, n_y are divided by a load scale
     eps (the linear tip angle under the Euler load) so that `tol` is relative to the deflection.
+
+    Parameters
+    ----------
+    hub_ratio : float
+        Hub radius over beam length, R / L.
+    lam : float
+        Dimensionless angular velocity Omega T.
+    lam_dot : float
+        Its rate d lam / d tau (the Euler load).
+    effects : Effects or None
+        Which loads act (centrifugal, softening, Euler); None: the defaults.  `extension` is
+        not supported.
+    tol : float
+        solve_bvp's tolerance (relative to the deflection, see above).
+    nodes : int
+        Nodes of the first mesh and of the returned samples.
+    guess : BVPSolution or None
+        A solution under nearby loads to start from (continuation); None: the straight beam.
+
+    Returns
+    -------
+    BVPSolution
+        The solution at `nodes` equispaced s, and scipy's result.
+
+    Raises
+    ------
+    RotbeamInputError
+        With effects.extension.
     """
+    # Over 60 lines as one named step: the equations, boundary conditions and first guess of the
+    # BVP share the load scale eps and exist only for this one solve_bvp call.
     ef = effects if effects is not None else Effects()
     if ef.extension:
         raise RotbeamInputError("solve_static_bvp is the inextensible elastica: no `extension`")

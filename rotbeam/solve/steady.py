@@ -1,37 +1,12 @@
 """Time stepping of the discrete model to its periodic steady state.
 
-Contract (in the spirit of scipy.integrate): `steady_state` never raises for a solver failure; it
-returns a `SteadyState` whose `converged` says whether a steady state was reached, `status` and
-`message` say why not, and the samples are what the integration actually saw.
-
-Steady-state criterion.  Every mode of the linearised model decays as exp(-eta tau / 2) (the
-damping matrix is eta M, mass-proportional).  Let Z_k be the state after k drive periods P and
-d_k = |Z_k - Z_{k-1}| (max-norm, velocities divided by max(omega, 1)).  For a decaying transient
-the distance still to go obeys |Z_k - Z_inf| <= d_k rho / (1 - rho) with rho = exp(-eta P / 2).
-We stop when that bound is below `ss_tol` times the size of the response (max |Theta| over the
-last period).  The RMS samples are the last `rms_periods` periods integrated if even their first
-instant is within ss_tol of the steady state (always so from the periodic start), else
-`rms_periods` more periods are integrated and sampled uniformly.
-From a converged collocated orbit (start="periodic") the first period is a check: the stepper
-runs at the tolerance the bound needs (ss_tol (1 - rho) / (3 rho), not `rtol`) and, when the
-orbit passes, its own samples are reported (spectrally accurate; the stepper's would carry the
-stepper's error).  An orbit that fails is left behind: the transient is followed at `rtol`.
-A single period cannot expose a slowly growing instability (its multiplier would have to exceed
-1 / rho to show), so the orbit's Floquet multipliers are computed first (`rotbeam.solve.stability`):
-an unstable orbit is left along its unstable direction and time stepping decides; the reported
-steady state carries the multipliers of the orbit it is (docs/stability.md).
-An attracting orbit can skip the verification period (numerics.certify = "monodromy", the
-default): the same pass that gives its multipliers gives its one-period defect, and the
-distance to the true periodic state, (I - Phi)^-1 defect, is compared with ss_tol
-(`rotbeam.solve.stability.monodromy_certificate`); the message says which certificate was used.
-An orbit whose offset is too large is first refined (M -> 2M - 1, up to 129 instants) and
-certified again; time stepping verifies what the finest orbit cannot certify.
-Without damping no steady state is reached: we say so and return the last periods seen.
-
-`steady_state` runs these as named steps: `initial_state`, `certified_or_refined` (the monodromy
-certificate, on finer orbits while it fails), `tolerances` (rtol, the first-period check
-tolerance, the absolute scale), `march` (period by period with a `PeriodStepper`, which holds
-the wall-time deadline and counts evaluations) and `rms_window`.
+`steady_state` never raises for a solver failure: its `SteadyState` says whether a steady state
+was reached (`converged`, `status`) and why not (`message`), and its samples are what the
+integration saw.  It starts from a collocated orbit, accepts an attracting one by its monodromy
+certificate (refining it while that fails), or else marches period by period until the bound on
+the remaining transient is below ss_tol, then reports the RMS window and the multipliers of what
+it reports.  The criterion, the steps and their tolerances: docs/numerics.md, "The steady-state
+march"; the stability checks: docs/stability.md.
 """
 
 from __future__ import annotations
@@ -65,19 +40,23 @@ from .system import FirstOrderSystem, OutOfTime
 
 @dataclass
 class SteadyState:
-    """Result of `steady_state`: samples over the RMS window and how we got there."""
+    """Result of `steady_state`: samples over the RMS window and how they were reached.
+
+    Times are dimensionless (tau, in units of T = sqrt(rho A L^4 / EI)), angles in rad and
+    deflections in units of L.
+    """
 
     tau: np.ndarray  #: sample instants (whole periods, endpoint excluded)
     theta: np.ndarray  #: (N-1, m) angles at the samples
-    y_m: np.ndarray  #: midspan deflection at the samples
-    converged: bool
+    y_m: np.ndarray  #: midspan deflection y_m / L at the samples
+    converged: bool  #: status == 0: a verified, stable steady state
     status: int  #: 0 steady, 1 no steady state within budget, 2 only an unstable orbit, -1 failure
-    message: str
+    message: str  #: how the state was reached, or why not
     periods: int  #: drive periods integrated in all
     transient: float  #: last bound on the remaining relative transient
-    nfev: int = 0
-    njev: int = 0
-    seconds: float = 0.0
+    nfev: int = 0  #: right-hand side evaluations of the time stepping
+    njev: int = 0  #: Jacobian evaluations of the time stepping
+    seconds: float = 0.0  #: wall time [s]
     history: list[float] = field(default_factory=list)  #: transient bound per period
     periodic: PeriodicResult | None = None  #: the collocation result, if one was made
     floquet: FloquetResult | None = None  #: multipliers of the reported orbit (else: collocated)
@@ -87,6 +66,24 @@ class SteadyState:
 
 
 def period_samples(dl: Dimensionless, k0: int, periods: int, m: int) -> np.ndarray:
+    """Sample instants of whole drive periods, the end excluded.
+
+    Parameters
+    ----------
+    dl : Dimensionless
+        The scene (its drive period P, dimensionless).
+    k0 : int
+        The first period: samples start at tau = k0 P.
+    periods : int
+        Number of periods.
+    m : int
+        Samples per period.
+
+    Returns
+    -------
+    numpy.ndarray
+        tau = (k0 + j / m) P, j = 0 .. periods m - 1, shape (periods m,).
+    """
     P = dl.period
     return (k0 + np.arange(periods * m) / m) * P
 
@@ -97,7 +94,28 @@ def initial_state(
     tail_tol: float = 1e-3,
     guess: np.ndarray | None = None,
 ) -> tuple[np.ndarray, PeriodicResult | None]:
-    """Initial state (Theta, Theta_t) at tau = 0, and the collocation result if one was made."""
+    """The state time stepping starts from at tau = 0.
+
+    Parameters
+    ----------
+    model : DiscreteModel
+        The model and its drive.
+    start : str
+        "periodic" (the collocated orbit; the quasi-static state when collocation fails),
+        "linear" (the linearised forced response), "quasistatic" (the static equilibrium and its
+        rate, by central differences) or "rest" (the straight beam at rest).
+    tail_tol : float
+        Harmonic tail the collocated orbit must reach (`solve_periodic_adaptive`).
+    guess : numpy.ndarray or None
+        An orbit (M, n) that seeds the collocation.
+
+    Returns
+    -------
+    state : numpy.ndarray
+        (Theta [rad], Theta_t [rad per unit tau]), shape (2 n,).
+    periodic : PeriodicResult or None
+        The collocation result when one converged, else None.
+    """
     n, dl = model.n, model.dl
     if start == "rest":
         return np.zeros(2 * n), None
@@ -122,7 +140,31 @@ def starting_state(
     guess: np.ndarray | None,
     state0: np.ndarray | None,
 ) -> tuple[np.ndarray, PeriodicResult | None]:
-    """`state0` (Theta, Theta_t) when given, else `initial_state` from numerics.start."""
+    """The state time stepping starts from: `state0` when given, else `initial_state`.
+
+    Parameters
+    ----------
+    model : DiscreteModel
+        The model and its drive.
+    num : Numerics
+        start and tail_tol.
+    guess : numpy.ndarray or None
+        An orbit (M, n) that seeds the collocation.
+    state0 : numpy.ndarray or None
+        (Theta, Theta_t) at tau = 0, shape (2 n,).
+
+    Returns
+    -------
+    state : numpy.ndarray
+        Shape (2 n,).
+    periodic : PeriodicResult or None
+        The collocation result, if one was made.
+
+    Raises
+    ------
+    ValueError
+        When state0 does not have shape (2 n,).
+    """
     if state0 is None:
         return initial_state(model, num.start, num.tail_tol, guess)
     z = np.array(state0, dtype=float)
@@ -143,12 +185,12 @@ def slowest_decay_rate(model: DiscreteModel) -> float:
     Parameters
     ----------
     model : DiscreteModel
-        The model and its drive.
+        The model, its damping eta, effects and drive.
 
     Returns
     -------
     float
-        The rate (0 without damping).
+        r, per unit tau (0 without damping).
     """
     eta, dl = model.eta, model.dl
     if eta == 0.0:
@@ -183,8 +225,24 @@ def _first_mode_damped_share(model: DiscreteModel, lam: float) -> tuple[float, f
 def collocation_window(
     dl: Dimensionless, num: Numerics, res: PeriodicResult
 ) -> tuple[np.ndarray, np.ndarray]:
-    """(tau, Theta) of the RMS window sampled from the collocated orbit's trigonometric
-    interpolant: `rms_periods` periods of `samples_per_period` instants."""
+    """The RMS window sampled from the collocated orbit's trigonometric interpolant.
+
+    Parameters
+    ----------
+    dl : Dimensionless
+        The scene (its drive period).
+    num : Numerics
+        rms_periods and samples_per_period.
+    res : PeriodicResult
+        The collocated orbit.
+
+    Returns
+    -------
+    tau : numpy.ndarray
+        `rms_periods` periods of `samples_per_period` instants from tau = 0, shape (p m,).
+    theta : numpy.ndarray
+        The orbit's angles [rad] there, shape (n, p m).
+    """
     m, p = num.samples_per_period, num.rms_periods
     return period_samples(dl, 0, p, m), np.tile(trig_interpolate(res.theta.T, m).T, (1, p))
 
@@ -309,7 +367,20 @@ class Tolerances:
     wref: float  #: velocities are compared divided by this (max(omega, 1))
 
     def atol(self, r: float, n: int) -> np.ndarray:
-        """Absolute tolerances of the state (Theta, Theta_t) at relative tolerance r."""
+        """Absolute tolerances of the state (Theta, Theta_t) at a relative tolerance.
+
+        Parameters
+        ----------
+        r : float
+            The relative tolerance.
+        n : int
+            Angles in the state.
+
+        Returns
+        -------
+        numpy.ndarray
+            r scale for the angles, r scale wref for the rates, shape (2 n,).
+        """
         return np.concatenate([np.full(n, r * self.scale), np.full(n, r * self.scale * self.wref)])
 
 
@@ -335,6 +406,27 @@ def tolerances(
     than quasi-statically (x140 for Fig. 7's E = 1e5 Pa, L = 0.1 mm beam), and an atol sized by
     the quasi-static response lets the stepper's error swamp the transient bound, which then
     stalls above ss_tol until max_tau.
+
+    Parameters
+    ----------
+    model : DiscreteModel
+        The model and its drive.
+    num : Numerics
+        rtol and ss_tol.
+    z : numpy.ndarray
+        The starting state (Theta, Theta_t), shape (2 n,).
+    response_scale : float or None
+        The quasi-static max |Theta| [rad], if known.
+    periodic : PeriodicResult or None
+        The collocated orbit, if any.
+    from_orbit : bool
+        Whether the march starts on a converged, not unstable collocated orbit.
+
+    Returns
+    -------
+    Tolerances
+        rho, the rtol of a transient and of the first period, the scale of Theta and the
+        velocity reference max(omega, 1).
     """
     n, dl = model.n, model.dl
     scale = response_scale if response_scale else float(np.max(np.abs(z[:n])))
@@ -372,7 +464,26 @@ class PeriodStepper:
         self.nfev = self.njev = 0
 
     def periods(self, k: int, count: int, z: np.ndarray, t_eval: np.ndarray, rtol: float):
-        """solve_ivp from tau = k P over `count` periods; None when the wall-time budget ran out."""
+        """`solve_ivp` over whole drive periods.
+
+        Parameters
+        ----------
+        k : int
+            The first period: from tau = k P.
+        count : int
+            Periods to integrate.
+        z : numpy.ndarray
+            State at tau = k P, shape (2 n,).
+        t_eval : numpy.ndarray
+            Instants to report.
+        rtol : float
+            Relative tolerance (the absolute one from `Tolerances.atol`).
+
+        Returns
+        -------
+        scipy.integrate OdeResult or None
+            solve_ivp's result; None when the wall-time budget ran out inside it.
+        """
         # imported here: a job whose orbits are all certified never steps (0.2 s of start-up)
         from scipy.integrate import solve_ivp
 
@@ -397,7 +508,22 @@ def _out_of_time(num: Numerics, k: int, P: float, bound: float) -> str:
 
 
 def transient_bound(d: float, rho: float, size: float) -> float:
-    """Bound on the remaining transient relative to the response: d rho / (1 - rho) / size."""
+    """Bound on the remaining transient relative to the response: d rho / (1 - rho) / size.
+
+    Parameters
+    ----------
+    d : float
+        |Z_k - Z_{k-1}|, the change over the last period (max-norm, rates divided by wref).
+    rho : float
+        Decay factor of the slowest transient over one period.
+    size : float
+        The response's size, max |Theta| over the last period [rad].
+
+    Returns
+    -------
+    float
+        The bound (0 for an exact fixed point, inf when nothing decays).
+    """
     if d == 0.0:  # an exact fixed point of the period map (also undamped: rho = 1)
         return 0.0
     if rho < 1.0:
@@ -406,8 +532,24 @@ def transient_bound(d: float, rho: float, size: float) -> float:
 
 
 def window_reach(d: float, rho: float, p: int) -> float:
-    """Factor r such that the state p periods back is within d r of the steady state:
-    |Z_{k-p} - Z_inf| <= d (sum_{q<p} rho^-q + rho / (1 - rho))."""
+    """How far the state p periods back may lie from the steady state, per unit of the last
+    period's change: whether the periods just integrated can serve as the RMS window.
+
+    Parameters
+    ----------
+    d : float
+        |Z_k - Z_{k-1}|, the change over the last period.
+    rho : float
+        Decay factor of the slowest transient over one period.
+    p : int
+        Periods back.
+
+    Returns
+    -------
+    float
+        r with |Z_{k-p} - Z_inf| <= d r, r = sum_{q<p} rho^-q + rho / (1 - rho) (0 for an exact
+        fixed point, inf for rho = 0).
+    """
     if d == 0.0:  # an exact fixed point of the period map (also undamped: rho = 1)
         return 0.0
     if rho > 0.0:  # bound <= ss_tol with d > 0 means rho < 1
@@ -437,7 +579,29 @@ def march(
     progress: Callable[[int, float], None] | None = None,
 ) -> March:
     """Period after period from the state z until the transient bound is below ss_tol, the
-    budget (max_periods, max_tau, max_seconds) is spent or the integrator fails."""
+    budget (max_periods, max_tau, max_seconds) is spent or the integrator fails.
+
+    From a converged collocated orbit one period may suffice (it measures the orbit's distance
+    to the time-stepped one); from any other start at least two are taken (the first period's
+    difference may be a lucky crossing).  The first period runs at `Tolerances.rtol_first`.
+
+    Parameters
+    ----------
+    stepper : PeriodStepper
+        The solver, its tolerances and deadline.
+    z : numpy.ndarray
+        The state at tau = 0, shape (2 n,).
+    from_orbit : bool
+        Whether z is a converged, not unstable collocated orbit's start.
+    progress : callable or None
+        progress(period, transient bound) after every period.
+
+    Returns
+    -------
+    March
+        Where it stopped (state, last period's samples, the last periods), the status, the
+        message and the transient bounds.
+    """
     dl, num, tol, n = stepper.dl, stepper.num, stepper.tol, stepper.n
     P, m, p = dl.period, num.samples_per_period, num.rms_periods
     # from a converged collocated orbit one period measures its distance to the time-stepped
@@ -507,6 +671,22 @@ def rms_window(
     exact trigonometric samples, rather than the stepper's, whose error is its tolerance); else
     the periods just integrated when they are close enough (`March.reusable`); else `rms_periods`
     more periods are integrated and sampled.  Without a steady state: the last period seen.
+
+    Parameters
+    ----------
+    stepper : PeriodStepper
+        The solver the march used.
+    run : March
+        Where the march stopped.
+    periodic : PeriodicResult or None
+        The collocated orbit the march started from, if any.
+    from_orbit : bool
+        Whether it started from that orbit.
+
+    Returns
+    -------
+    Window
+        The samples (tau, Theta), the status and message, and the periods integrated in all.
     """
     dl, num, n = stepper.dl, stepper.num, stepper.n
     p, m, k = num.rms_periods, num.samples_per_period, run.k
@@ -555,6 +735,19 @@ def certify_refining(
     The offset falls with the interpolant's defect, and a finer orbit costs less than the
     periods of time stepping that would verify the coarse one (docs/stability.md); the
     refinement stops where the offset does not halve.
+
+    Parameters
+    ----------
+    model : DiscreteModel
+        The model and its drive.
+    num : Numerics
+        certify, tail_tol, ss_tol and the RMS window.
+    periodic : PeriodicResult
+        The collocated orbit.
+    fl : FloquetResult or None
+        Its multipliers and defect.
+    t0 : float
+        `time.perf_counter` at the start of the steady-state search (for `seconds`).
 
     Returns
     -------
@@ -619,6 +812,8 @@ def steady_state(
     Returns
     -------
     SteadyState
+        The samples over the RMS window (tau in units of T, Theta, y_m / L), whether and how a
+        steady state was reached, the multipliers of the reported orbit, and the final state.
     """
     num = numerics if numerics is not None else Numerics()
     t0 = time.perf_counter()
@@ -669,7 +864,30 @@ def reported_stability(
 ) -> tuple[int, str, FloquetResult | None]:
     """Status, message and multipliers of the reported state: the collocated orbit's when it was
     verified in one period, else those of the orbit time stepping settled on (an unstable one is
-    a slow transient, not a steady state)."""
+    a slow transient, not a steady state).
+
+    Parameters
+    ----------
+    model : DiscreteModel
+        The model and its drive.
+    num : Numerics
+        samples_per_period (the last period's samples give the multipliers).
+    win : Window
+        The reported window.
+    orbit_fl : FloquetResult or None
+        The collocated orbit's multipliers, if any.
+    from_orbit : bool
+        Whether the march started from the collocated orbit.
+
+    Returns
+    -------
+    status : int
+        The window's, or STATUS_UNSTABLE when the orbit reached is unstable.
+    message : str
+        The window's message with the stability note.
+    floquet : FloquetResult or None
+        The multipliers of the reported orbit (else of the collocated one).
+    """
     status, message = win.status, win.message
     fl = orbit_fl if status == 0 and win.periods == 1 and from_orbit else None
     if status == 0 and fl is None:

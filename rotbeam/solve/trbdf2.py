@@ -10,49 +10,9 @@ This is the method of MATLAB's ode23tb (M. E. Hosea and L. F. Shampine, "Analysi
 implementation of TR-BDF2", Appl. Numer. Math. 20 (1996) 21-37), written as a
 `scipy.integrate.OdeSolver` so that ``solve_ivp(fun, t_span, y0, method=TRBDF2, ...)`` behaves
 like ``method="Radau"`` (same options, status, message, nfev/njev/nlu, dense output, t_eval).
-Why: a step needs one real n x n LU per step size (Radau: a real and a complex one of the
-3-stage system) and about five f evaluations; being second order it suits modest accuracies.
-
-Method.  gamma = 2 - sqrt(2), d = gamma/2.  A step of size h from (t_n, y_n), f_n = f(t_n, y_n):
-
-    TR   (over [t_n, t_n + gamma h]):  z - d h f(t_n + gamma h, z) = y_n + d h f_n
-    BDF2 (through t_n, t_n + gamma h, t_n + h):
-         y_{n+1} - d h f(t_n + h, y_{n+1}) = a z + b y_n,
-         a = 1/(gamma (2 - gamma)),  b = -(1 - gamma)^2/(gamma (2 - gamma)).
-
-Derivation / checks (verified numerically, see tests/test_trbdf2.py):
-
-* BDF2 on the nodes 0, gamma, 1 has leading coefficient (1 - gamma)/(2 - gamma) on h f_{n+1};
-  with gamma = 2 - sqrt(2) it equals gamma/2 = d, so both stages have the same iteration
-  matrix I - d h J (one LU per step size).  a + b = 1 (consistency).
-* As a Runge-Kutta method (ESDIRK) with c = (0, gamma, 1): rows A = [0 0 0; d d 0; w w d],
-  weights b = (w, w, d), w = a d = sqrt(2)/4 (2 w + d = 1).  sum b c = 1/2 (order 2),
-  sum b c^2 = sqrt(2) - 1 != 1/3, so exactly order 2.
-* Stability function R(z) = (a (1 + d z)/(1 - d z) + b)/(1 - d z); R(z) - e^z = -k z^3 + O(z^4)
-  with k = (-3 gamma^2 + 4 gamma - 2)/(12 (2 - gamma)) = -0.04044; |R(iy)| <= 1 and
-  R(z) ~ (a - b)/(d z) = (2 + 2 sqrt(2))/z -> 0 as z -> -inf: A- and L-stable.
-* Error estimate (Hosea & Shampine): the companion weights bhat = ((1-w)/3, (3w+1)/3, d/3)
-  satisfy all four third-order conditions, so e = h sum (b - bhat)_i f_i
-  = h ((4w - 1)/3 f_n - 1/3 f_z + 2d/3 f_{n+1}) estimates the local error of y_{n+1}.  The
-  coefficients sum to 0 and annihilate linear f, so e is -1 times the Bank et al. (1985)
-  divided-difference estimate 2 k h (f_n/gamma - f_z/(gamma(1-gamma)) + f_{n+1}/(1-gamma)).
-  For stiff components e ~ h f is not small; as in ode23tb it is filtered by solving
-  (I - d h J) e_f = e, which keeps it bounded: for y' = lambda y and h lambda -> -inf,
-  e_f -> -((E_N - E_Z)/d) y_n = -1.61 y_n (the TR stage gives z ~ -y_n), so a stiff component
-  still away from its equilibrium limits h, and one that has decayed does not.
-  f_z and f_{n+1} are taken from the converged stage equations (no extra evaluations):
-  h f_z = (z - y_n)/d - h f_n,  h f_{n+1} = (y_{n+1} - a z - b y_n)/d.
-
-Control.  Simplified Newton per stage (at most 4 iterations) with scipy Radau's rate-based test
-and tolerance max(10 eps/rtol, min(0.03, rtol^0.5)); as in ode23tb, the rate seen earlier with
-the same LU lets a first iteration be accepted when its correction is 10x below that.  J is
-reused across steps and recomputed (as in Radau) after a step that needed > 2 iterations at a
-rate > 1e-3, or when Newton fails with an old J (then h is halved if it fails with a fresh one).
-The LU is redone whenever h changes.  Step size h_new = h min(5, max(0.2, 0.9 err^(-1/3))),
-err the RMS norm of e_f/(atol + rtol max(|y_n|, |y_{n+1}|)); as in Radau, h is kept (and the LU
-with it) when the ratio is below 1.2, and not increased right after a rejection.  This controls
-the local error: the global error grows like (number of steps) x rtol.  Dense output: cubic
-Hermite on y_n, f_n, y_{n+1}, f_{n+1}.
+A step needs one real n x n LU per step size and about five f evaluations; being second order
+it suits modest accuracies.  The method, its derivation, error estimate and step control:
+docs/numerics.md, "TR-BDF2".
 """
 
 from __future__ import annotations
@@ -81,7 +41,19 @@ SAFETY = 0.9
 
 
 def stability_function(z: complex | np.ndarray) -> complex | np.ndarray:
-    """R(z) with y_{n+1} = R(h lambda) y_n for y' = lambda y (for checks of the coefficients)."""
+    """The stability function R(z), y_{n+1} = R(h lambda) y_n for y' = lambda y (for checks of
+    the coefficients).
+
+    Parameters
+    ----------
+    z : complex or numpy.ndarray
+        h lambda, any shape.
+
+    Returns
+    -------
+    complex or numpy.ndarray
+        R(z) = (A_Z (1 + D z) / (1 - D z) + A_Y) / (1 - D z), complex, the shape of z.
+    """
     z = np.asarray(z, dtype=complex)
     tr = (1.0 + D * z) / (1.0 - D * z)
     return (A_Z * tr + A_Y) / (1.0 - D * z)
@@ -175,8 +147,10 @@ class TRBDF2(OdeSolver):
     """TR-BDF2 (ode23tb) for stiff problems; use as ``solve_ivp(..., method=TRBDF2)``.
 
     Options as for Radau: rtol, atol, jac (callable, array or None for finite differences),
-    jac_sparsity (only to group finite differences; matrices are dense), max_step, first_step,
-    vectorized.  Second order, L-stable; one real LU of I - d h J per step size.
+    jac_sparsity (a structure for the finite differences: the entries outside it are set to
+    zero, all n columns are still differenced; matrices are dense), max_step, first_step,
+    vectorized.  Second order, L-stable; one real LU of I - d h J per step size
+    (docs/numerics.md, "TR-BDF2").
     """
 
     def __init__(
@@ -368,6 +342,31 @@ def fixed_steps(
 
     For convergence-order checks: the stages are the solver's own, Newton is iterated to
     `newton_rtol` (with a fresh Jacobian per step), and there is no error control.
+
+    Parameters
+    ----------
+    fun : callable
+        fun(t, y) -> y', shape (n,).
+    t_span : tuple of float
+        (t0, t1).
+    y0 : numpy.ndarray
+        State at t0, shape (n,).
+    n_steps : int
+        Number of equal steps.
+    jac : callable, numpy.ndarray or None
+        The Jacobian as for `TRBDF2` (None: finite differences).
+    newton_rtol : float
+        Tolerance of the stage iterations (used as rtol and atol of the solver).
+
+    Returns
+    -------
+    numpy.ndarray
+        The states at t0 + i h, i = 0 .. n_steps, shape (n_steps + 1, n).
+
+    Raises
+    ------
+    RuntimeError
+        When Newton does not converge in a step.
     """
     t0, t1 = map(float, t_span)
     h = (t1 - t0) / n_steps
@@ -401,7 +400,26 @@ NUM_JAC_FACTOR_INCREASE = 10
 NUM_JAC_FACTOR_DECREASE = 0.1
 
 
-def validate_first_step(first_step, t0, t_bound):
+def validate_first_step(first_step: float, t0: float, t_bound: float) -> float:
+    """The first step, checked: positive and within the interval.
+
+    Parameters
+    ----------
+    first_step : float
+        The step asked for.
+    t0, t_bound : float
+        The interval of integration.
+
+    Returns
+    -------
+    float
+        first_step.
+
+    Raises
+    ------
+    ValueError
+        When it is not positive or exceeds |t_bound - t0|.
+    """
     if first_step <= 0:
         raise ValueError("`first_step` must be positive.")
     if first_step > np.abs(t_bound - t0):
@@ -409,13 +427,37 @@ def validate_first_step(first_step, t0, t_bound):
     return first_step
 
 
-def validate_max_step(max_step):
+def validate_max_step(max_step: float) -> float:
+    """The largest step, checked: positive.
+
+    Parameters
+    ----------
+    max_step : float
+        The step asked for.
+
+    Returns
+    -------
+    float
+        max_step.
+
+    Raises
+    ------
+    ValueError
+        When it is not positive.
+    """
     if max_step <= 0:
         raise ValueError("`max_step` must be positive.")
     return max_step
 
 
-def warn_extraneous(extraneous):
+def warn_extraneous(extraneous: dict[str, Any]) -> None:
+    """Warn about options the solver does not use.
+
+    Parameters
+    ----------
+    extraneous : dict
+        The unused keyword arguments.
+    """
     if extraneous:
         warn(
             "The following arguments have no effect for a chosen solver: "
@@ -424,7 +466,30 @@ def warn_extraneous(extraneous):
         )
 
 
-def validate_tol(rtol, atol, n):
+def validate_tol(rtol: float, atol: float | np.ndarray, n: int) -> tuple[float, np.ndarray]:
+    """The tolerances, checked: rtol raised to 100 eps with a warning, atol non-negative.
+
+    Parameters
+    ----------
+    rtol : float
+        Relative tolerance.
+    atol : float or numpy.ndarray
+        Absolute tolerance, scalar or shape (n,).
+    n : int
+        Size of the state.
+
+    Returns
+    -------
+    rtol : float
+        At least 100 eps.
+    atol : numpy.ndarray
+        atol as an array.
+
+    Raises
+    ------
+    ValueError
+        When atol has the wrong shape or a negative entry.
+    """
     if np.any(rtol < 100 * EPS):
         warn(
             "At least one element of `rtol` is too small. "
@@ -440,13 +505,64 @@ def validate_tol(rtol, atol, n):
     return rtol, atol
 
 
-def norm(x):
-    """RMS norm."""
+def norm(x: np.ndarray) -> float:
+    """The RMS norm.
+
+    Parameters
+    ----------
+    x : numpy.ndarray
+        Any shape.
+
+    Returns
+    -------
+    float
+        ||x||_2 / sqrt(x.size).
+    """
     return np.linalg.norm(x) / x.size**0.5
 
 
-def select_initial_step(fun, t0, y0, t_bound, max_step, f0, direction, order, rtol, atol):
-    """Initial step of Hairer, Norsett & Wanner, Solving ODEs I, Sec. II.4."""
+def select_initial_step(
+    fun: Callable[[float, np.ndarray], np.ndarray],
+    t0: float,
+    y0: np.ndarray,
+    t_bound: float,
+    max_step: float,
+    f0: np.ndarray,
+    direction: float,
+    order: int,
+    rtol: float,
+    atol: float | np.ndarray,
+) -> float:
+    """Initial step of Hairer, Norsett & Wanner, Solving ODEs I, Sec. II.4.
+
+    Parameters
+    ----------
+    fun : callable
+        fun(t, y) -> y'.
+    t0 : float
+        Initial time.
+    y0 : numpy.ndarray
+        Initial state, shape (n,).
+    t_bound : float
+        End of the interval.
+    max_step : float
+        Largest step allowed.
+    f0 : numpy.ndarray
+        fun(t0, y0).
+    direction : float
+        +1 or -1, the direction of integration.
+    order : int
+        Order of the error estimate (2 for TR-BDF2).
+    rtol : float
+        Relative tolerance.
+    atol : float or numpy.ndarray
+        Absolute tolerance.
+
+    Returns
+    -------
+    float
+        The absolute size of the first step.
+    """
     if y0.size == 0:
         return np.inf
     interval_length = abs(t_bound - t0)
@@ -466,10 +582,42 @@ def select_initial_step(fun, t0, y0, t_bound, max_step, f0, direction, order, rt
     return min(100 * h0, h1, interval_length, max_step)
 
 
-def num_jac(fun, t, y, f, threshold, factor, sparsity=None):
+def num_jac(
+    fun: Callable[[float, np.ndarray], np.ndarray],
+    t: float,
+    y: np.ndarray,
+    f: np.ndarray,
+    threshold: float | np.ndarray,
+    factor: np.ndarray | None,
+    sparsity: np.ndarray | None = None,
+) -> tuple[np.ndarray, np.ndarray]:
     """Forward-difference Jacobian of the vectorized `fun`, with the step factor of each column
-    adapted from call to call to keep the difference well above its round-off; returns
-    (J, factor for the next call)."""
+    adapted from call to call to keep the difference well above its round-off.
+
+    Parameters
+    ----------
+    fun : callable
+        fun(t, Y) -> F for states in the columns of Y, shape (n, k) -> (n, k).
+    t : float
+        Time.
+    y : numpy.ndarray
+        State, shape (n,).
+    f : numpy.ndarray
+        fun(t, y), shape (n,).
+    threshold : float or numpy.ndarray
+        Smallest |y| a difference step is scaled by (the absolute tolerance).
+    factor : numpy.ndarray or None
+        Step factors of the columns from the last call, shape (n,); None: sqrt(eps).
+    sparsity : numpy.ndarray or None
+        A dense structure, shape (n, n): entries where it is zero are set to zero.
+
+    Returns
+    -------
+    J : numpy.ndarray
+        The Jacobian, shape (n, n).
+    factor : numpy.ndarray
+        The step factors for the next call, shape (n,).
+    """
     y = np.asarray(y)
     n = y.shape[0]
     if n == 0:
