@@ -1,25 +1,10 @@
 """The effect budget of a scene: what each effect of the model contributes to RMS(y_m) and to
-Delta RMS, and what it costs to simulate.
+Delta RMS, and what it costs to simulate (`rotbeam effects`, `--effects auto`).
 
-Each effect is measured against the scene as given, one at a time:
-
-* an effect that is on is switched off (``switched off``): its share of RMS is
-  (RMS - RMS_without) / RMS, its share of Delta RMS is Delta - Delta_without (Delta RMS is
-  already relative).  Switching off `centrifugal` also switches off `softening`, which is part
-  of the centrifugal load (the row says so).
-* an effect that is off is switched on (``switched on``): the shares are what leaving it out
-  costs, (RMS_with - RMS) / RMS and Delta_with - Delta.
-* damping cannot be switched off: an undamped beam has no steady state.  Its shares are first
-  order in gamma (``first order in gamma``): gamma dRMS/dgamma / RMS by central differences at
-  gamma (1 +- 1 %), the linear extrapolation of RMS to gamma = 0.
-
-One-at-a-time shares do not add up: effects interact (the centrifugal stiffening sets how far
-the Euler load deflects the beam).  So the budget also gives *sequential* shares, which do: the
-effects that are on (damping excepted) are switched off one after another in the order
-`SEQUENCE` (the Euler load, the forcing, last), and effect k's sequential share is
-(RMS_{k-1} - RMS_k) / RMS; they telescope to (RMS - RMS_last) / RMS = 1, since with every load
-off the beam stays straight (RMS_last = 0).  The order matters and is stated.  The one-at-a-time
-share of the Euler load is 1 for the same reason.
+Each effect is switched off (or on, where the scene leaves it out) one at a time; damping, which
+cannot be switched off, is measured by its first-order sensitivity; and sequential shares, the
+effects switched off in the order `SEQUENCE`, add up to 1.  How each share is defined and why:
+docs/model.md, "The effect budget".
 """
 
 from __future__ import annotations

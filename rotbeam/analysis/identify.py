@@ -1,24 +1,9 @@
 """Beam parameters (E and gamma by default) from a measured resonance curve RMS(y_m)(f_d).
 
-Least squares with the full model: every residual evaluation runs one periodic steady state per
-measured f_d (`rotbeam.runs.scene.simulate`), each seeded with the orbit of the previous
-evaluation at the same f_d, and evaluations are cached by parameter values (the Jacobian's base
-point is the last residual's).  The fitted parameters are u = log(X / X_start) (positivity, and
-relative steps); the Jacobian is a forward difference of STEP in u.
-
-Uncertainty: cov_u = s^2 (J^T J)^-1 at the optimum, s^2 = RSS / (n - p) when the file gives no
-rms_std (residuals unweighted), else residuals divided by rms_std and s^2 = max(1, chi^2 / (n -
-p)) (the stated errors, inflated when the scatter exceeds them).  The 95 % interval is
-exp(u +- q se_u) X_start, q the Student t quantile with n - p degrees of freedom; X_stderr = X
-se_u (delta method).
-
-A trial point whose runs reach no steady state (a lightly damped resonance can be out of the
-collocation's reach) gets large residuals, so the trust region retreats from it.
-
-Start: E from the data's peak (the model's linear f_0 at Omega_0 + a made equal to the f_d of
-the largest RMS, parabola through the top three points), then gamma from the ratio of the
-model's largest RMS to the data's (a resonant peak scales as 1 / damping).  Other parameters
-start at the scene's values.
+Least squares with the full model in log parameters, one periodic steady state per measured f_d
+and evaluation, with standard errors and 95 % intervals from the Jacobian at the optimum
+(`rotbeam identify`).  The start, the steps, the penalty for runs without a steady state and the
+intervals: docs/calibration.md, "E and gamma from a resonance curve".
 """
 
 from __future__ import annotations

@@ -1,21 +1,10 @@
 """Damping from a ring-down (App. B): fit a damped oscillation, gamma = 2 rho A / t_decay.
 
-Model of the free decay after a perturbation (the first mode, t0 the first sample):
+    y(t) = exp(-(t - t0) / t_decay) (B1 cos w(t - t0) + B2 sin w(t - t0)) + c
 
-    y(t) = exp(-s (t - t0)) (B1 cos w(t - t0) + B2 sin w(t - t0)) + c,   s = 1 / t_decay
-
-fitted by nonlinear least squares (scipy.optimize.least_squares) in (f, s, B1, B2, c), started
-from the FFT peak (zero-padded, parabolic interpolation) and the slope of the log of the Hilbert
-envelope.  Standard errors come from the Jacobian at the optimum and the residual variance,
-cov = s^2 (J^T J)^-1 with s^2 = RSS / (n - 5); t_decay's and gamma's by the delta method
-(gamma = 2 rho A s is linear in s; rho A of the beam is taken as exact).  The amplitude decay
-rate of the model's modes is eta / 2 in units of 1/T, i.e. gamma / (2 rho A): this gamma is the
-one the model uses.
-
-A fit is refused (`RingdownRejected`) rather than reported when the record cannot carry it:
-y never crosses its final value (overdamped, or shorter than a cycle), fewer than MIN_CYCLES
-cycles, no decay distinguishable from zero, overdamped by the fit (Q = pi f t_decay < 1/2), or
-too noisy (SNR < MIN_SNR or gamma's relative standard error > MAX_REL_STDERR).
+by nonlinear least squares, with standard errors from the Jacobian; a record that cannot carry
+the fit is refused (`RingdownRejected`) rather than reported (`rotbeam damping`).  The start, the
+errors and the reasons for refusal: docs/calibration.md, "Damping from a ring-down".
 """
 
 from __future__ import annotations

@@ -1,21 +1,9 @@
 """What the stated uncertainty of the inputs does to RMS, Delta RMS, f_d* and the verdict.
 
-Inputs are independent normal distributions X ~ N(mean, sd), given as "gamma=0.039+-0.008,
-E=1.22e6+-0.05e6" (CLI) or as a scene-file section `uncertainty: {gamma: "0.039 +- 0.008"}`;
-any beam field (L, h, b, E, rho, R, gamma) and the drive's omega0 and amplitude.  Two methods:
-
-- "linear" (default): 1 + k runs, the plain run and one per uncertain input moved by +1 sd
-  (a secant over one standard deviation, which also averages the response over the spread, not
-  only its slope at the mean).  Output sd = sqrt(sum_i (dY_i)^2); the 95 % interval is mean +-
-  1.96 sd; P(quasi-static) = Phi((threshold - Delta RMS) / sd(Delta RMS)).
-- "sobol": n runs (default 32, a power of two) at a scrambled Sobol design (scipy.stats.qmc,
-  seed 0) mapped through the normal quantile; the mean, sd, the 2.5 / 97.5 % quantiles of the n
-  values and the fraction of quasi-static verdicts.  Catches what the secant misses (a verdict
-  that flips inside the spread, curvature near resonance).
-
-An input with sd = 0 costs nothing and changes nothing: with every sd zero the answer is the
-plain run's.  A sample outside a parameter's range (e.g. gamma < 0 at -2 sd) is an error naming
-the input: a normal spread that wide is not a description of the measurement.
+Inputs are independent normal distributions of beam fields, omega0 and amplitude (e.g.
+"gamma=0.039+-0.008" on the command line, or a scene file's `uncertainty` section), carried
+through the model by a secant per input ("linear", 1 + k runs) or by a scrambled Sobol design
+("sobol").  The methods and what they report: docs/calibration.md, "Uncertainty into the answer".
 """
 
 from __future__ import annotations

@@ -1,24 +1,10 @@
 """The engineer's question for one scene: is the quasi-static answer good enough here?
 
-The criterion is the paper's: the quasi-static model is adequate where
-Delta RMS = |RMS_dyn - RMS_QS| / RMS_dyn stays below a threshold (0.10 in the paper's main
-figures).  Beside the answer of the full model this module gives the linear estimate of where
-the boundary lies along the drive frequency at this rotation speed, so that the user sees how
-far from it the scene is:
-
-    f_d* ~ c_0(zeta, threshold) f_0,
-
-f_0 the first in-plane frequency of the linearised beam at the maximal speed Omega_0 + a (the
-premise of Eq. Southwell) and c_0 the first root of the canonical damped oscillator's Delta RMS
-(App. E, `secondorder.c0_root`).  On the reference beam the full model's fitted c is 2-3 %
-above c_0 (README, "Results"); the estimate is a guide, the verdict comes from the simulation.
-A beam too damped for that root (its response never exceeds the static one by the threshold)
-crosses on the other branch of |Delta RMS|, where the response lags the static one by the
-threshold (`_lag_ratio`); the estimate then comes from there.
-
-`critical` answers the other way round: f_d* of the full model at one speed, by root
-finding started at that estimate (the CLI's `rotbeam critical`).
-The verdict's figure is `rotbeam.report.verdict_plot`.
+`judge` gives the full model's verdict (Delta RMS against a threshold, the paper's criterion)
+and the linear estimate f_d* ~ c_0 f_0 of where the boundary lies; `critical` finds f_d* of the
+full model at one speed by root finding started at that estimate (`rotbeam critical`).  The
+criterion, the estimate, its lag branch for overdamped beams and the search: docs/model.md, "The
+verdict and the linear estimate of f_d*".  The verdict's figure is `rotbeam.report.verdict_plot`.
 """
 
 from __future__ import annotations

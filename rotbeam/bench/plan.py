@@ -1,7 +1,8 @@
 """The benchmark's plan: the scenes, the curves (integrator and steady-state strategy), the
 tolerance ladder, the grids and budgets, and the plan's mapping to and from a config dict.
 
-What the benchmark measures and why is said in `rotbeam.bench.run`.
+What the benchmark measures and why: docs/numerics.md, "What accuracy costs, and how to trade
+it".
 """
 
 from __future__ import annotations
@@ -14,7 +15,7 @@ from ..config.errors import RotbeamInputError
 from ..model.params import Beam
 from ..solve.numerics import Numerics
 
-#: (label, Omega_0 [rad/s], f_d [Hz]) on the reference beam (issue #5)
+#: (label, Omega_0 [rad/s], f_d [Hz]) of the benchmark's scenes on the reference beam
 SCENES: tuple[tuple[str, float, float], ...] = (
     ("O5_f2", 5.0, 2.0),
     ("O5_f7", 5.0, 7.0),

@@ -1,27 +1,11 @@
-"""Work-precision benchmark: what each digit of accuracy costs, measured side by side in one run.
+"""The work-precision benchmark's runs: what each digit of accuracy costs, measured side by side.
 
-For a fixed set of scenes on the reference beam, every *curve* (an integrator with a steady-state
-strategy, at N = 40) is run over a ladder of tolerances; each run records its wall time and the
-error of RMS(y_m) and of Delta RMS against references computed in the same run:
-
-* the **same-N reference** (N = 40, tight tolerance): the error of a run against it is what the
-  time integration and the steady-state strategy cost (the spatial error is common to all curves);
-* the **converged reference**: Richardson extrapolation (order 2, measured in tests/test_dynamics)
-  of tight solutions at N = 40 and 80; the error of the grid study (N = 10 ... 80) and of the
-  surrogate is against it.  The same extrapolation from N = 20 and 40 says how many digits the
-  reference has (`reference_digits`).
-
-Errors of RMS are relative.  Delta RMS is itself a relative number that is compared with a
-threshold (0.1 in the paper), so its error is |Delta - Delta_ref| / max(|Delta_ref|, 0.1).
-
-The baseline is the plain port of the paper: scipy Radau with its finite-difference Jacobian, from
-the straight beam at rest, integrated over the time in which every transient decays below the
-target error (`baseline_run`); its ladder varies rtol.  The
-speed-up of a curve on a scene is the ratio of the cheapest baseline run and the cheapest run of
-the curve whose RMS error is below `target` (0.1 %); both measured in the same process.
-
-This module makes the runs; what to run is `rotbeam.bench.plan`, the speed-ups, the chosen
-default, the Markdown summary and the figure are `rotbeam.bench.report`.
+Every curve of the plan (an integrator with a steady-state strategy) runs over a ladder of
+tolerances on each scene; each run records its wall time and the errors of RMS(y_m) and of Delta
+RMS against references computed in the same run (`reference`), beside the baseline, the plain
+port of the paper (`baseline_run`).  What to run is `rotbeam.bench.plan`; the speed-ups, the
+default, the summary and the figure are `rotbeam.bench.report`.  The references, the error
+measures and the results: docs/numerics.md, "What accuracy costs, and how to trade it".
 """
 
 from __future__ import annotations
