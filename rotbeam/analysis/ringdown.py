@@ -31,6 +31,14 @@ class RingdownRejected(Exception):
 
 @dataclass(frozen=True)
 class RingdownFit:
+    """The fitted damped oscillation of a ring-down, gamma for the beam, and the fit's quality.
+
+    Every value has its standard error (``*_stderr``) from the Jacobian and the residual
+    variance.  ``f_hz`` is the oscillation's frequency [Hz]; ``zeta`` is dimensionless; ``snr``
+    is the initial amplitude over the residual's standard deviation; ``cycles`` the record's
+    length in cycles; ``rhoA`` the beam's mass per length [kg/m], taken as exact.
+    """
+
     f_hz: float
     f_hz_stderr: float
     t_decay: float  #: amplitude decay time [s]
@@ -51,9 +59,30 @@ class RingdownFit:
     rhoA: float
 
     def as_dict(self) -> dict[str, float | int]:
+        """The fit as JSON-ready fields (`rotbeam damping --json`).
+
+        Returns
+        -------
+        dict
+            Every field by name.
+        """
         return dict(vars(self))
 
     def curve(self, t: np.ndarray, t0: float) -> np.ndarray:
+        """The fitted oscillation at times `t`, for drawing it over the record.
+
+        Parameters
+        ----------
+        t : numpy.ndarray
+            Times [s].
+        t0 : float
+            The record's first time [s], where the fit's amplitude and phase hold.
+
+        Returns
+        -------
+        numpy.ndarray
+            y(t) in the record's unit: A exp(-(t - t0) / t_decay) cos(w (t - t0) + phase) + c.
+        """
         tt = np.asarray(t) - t0
         w = 2.0 * math.pi * self.f_hz
         return (
@@ -132,7 +161,31 @@ def _start(tt: np.ndarray, y: np.ndarray, c0: float) -> np.ndarray:
 
 
 def fit_ringdown(data: Ringdown, beam: Beam | None = None) -> RingdownFit:
-    """Fit the damped oscillation; gamma for `beam` (default the Table 1 beam)."""
+    """Fit a damped oscillation to a ring-down and give gamma = 2 rho A / t_decay for the beam.
+
+    Nonlinear least squares started from the FFT peak and the log Hilbert envelope; a record
+    that cannot carry the fit is refused rather than reported (docs/calibration.md, "Damping
+    from a ring-down").
+
+    Parameters
+    ----------
+    data : Ringdown
+        The record: times t [s] and deflection y (any unit), checked by `load_ringdown`.
+    beam : Beam or None
+        The beam whose rho A turns the decay time into gamma (default: Table 1).
+
+    Returns
+    -------
+    RingdownFit
+        Frequency [Hz], decay time [s], amplitude, phase [rad], offset, gamma [N s/m^2] and
+        zeta, each with its standard error, and the fit's quality.
+
+    Raises
+    ------
+    RingdownRejected
+        If the record cannot carry the fit: no oscillation, too few cycles, no decay
+        distinguishable from zero, overdamped, or too noisy (the message says which).
+    """
     beam = beam or Beam()
     t, y = np.asarray(data.t, float), np.asarray(data.y, float)
     tt = t - t[0]
