@@ -53,7 +53,9 @@ def timed_floquet() -> Iterator[list[float]]:
 
 
 def stability_costs(
-    numerics: Numerics = WORKFLOW_NUMERICS, scenes=SCENES, repeats: int = 3
+    numerics: Numerics = WORKFLOW_NUMERICS,
+    scenes: tuple[tuple[str, float, float], ...] = SCENES,
+    repeats: int = 3,
 ) -> pd.DataFrame:
     """One row per scene: the point's CPU seconds, its Floquet passes' and their share.
 

@@ -3,8 +3,12 @@
 from __future__ import annotations
 
 import argparse
+from typing import TYPE_CHECKING
 
 from . import options, show
+
+if TYPE_CHECKING:
+    from ..runs.scene import Scene
 
 HELP = ("gamma from a ring-down (columns t [s], y): fit of a damped oscillation, gamma = 2 rho A "
         "/ t_decay")  # fmt: skip
@@ -28,7 +32,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--plot", help="draw the record and the fit to this .png, .pdf or .svg")
 
 
-def scene_beam(path: str | None):
+def scene_beam(path: str | None) -> Scene:
     """The scene of a --scene file (its drive and effects as given, the rest defaults).
 
     Parameters

@@ -4,6 +4,7 @@ fitted model and the scene's (Table 1) model."""
 from __future__ import annotations
 
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 import pandas as pd
@@ -12,6 +13,10 @@ from ..analysis.identify import Identification
 from ..analysis.measurements import ResonanceCurve, Ringdown
 from ..analysis.ringdown import RingdownFit
 from .style import DYN, GREY, QS, figure, save
+
+if TYPE_CHECKING:
+    from ..runs.scene import Scene
+    from ..solve.numerics import Numerics
 
 
 def plot_ringdown(data: Ringdown, fit: RingdownFit, path: str | Path) -> None:
@@ -98,8 +103,9 @@ def plot_identification(curve: ResonanceCurve, fit: Identification, fitted: pd.D
     save(fig, path)
 
 
-def plot_identification_run(curve: ResonanceCurve, fit: Identification, scene, omega0: float,
-                            amplitude: float, numerics, path: str | Path) -> None:  # fmt: skip
+def plot_identification_run(curve: ResonanceCurve, fit: Identification, scene: Scene,
+                            omega0: float, amplitude: float, numerics: Numerics,
+                            path: str | Path) -> None:  # fmt: skip
     """`plot_identification` with the fitted beam's and the scene beam's curves simulated on 41
     drive frequencies spanning the data (5 % beyond each end): 82 more runs of the full model.
 
