@@ -7,6 +7,7 @@ follow it.
 
 from __future__ import annotations
 
+from collections.abc import Iterator
 from typing import Any
 
 
@@ -196,7 +197,7 @@ def schema_error_message(error: Any, root: dict) -> str:
     return f"{key_name(path)} = {show(value)}: must be {describe_allowed(schema, root)}"
 
 
-def json_numbers(value: Any, path: tuple = ()):
+def json_numbers(value: Any, path: tuple = ()) -> Iterator[tuple[tuple, Any]]:
     """Every (path, number) of a nested config.
 
     Parameters

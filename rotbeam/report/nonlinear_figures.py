@@ -76,7 +76,9 @@ def _zoom(ax, rows: pd.DataFrame, folds: pd.DataFrame, a: float, margin: float =
     ax.set_title(f"a = {a:g} rad/s, near the losses of stability", loc="left")
 
 
-def branches_figure(rows: pd.DataFrame, folds: pd.DataFrame, omega0: float, pdf, png) -> None:
+def branches_figure(
+    rows: pd.DataFrame, folds: pd.DataFrame, omega0: float, pdf: str | Path, png: str | Path
+) -> None:
     """Draw the branches of periodic orbits beside the sweeps: one column per amplitude, both
     arms of the branch and both sweeps over the whole range (top) and around the arms' losses of
     stability (bottom).
@@ -125,7 +127,7 @@ def response_figure(
     running: np.ndarray,
     f_d: float,
     title: str,
-    png,
+    png: str | Path,
     late: float | None = None,
 ) -> None:
     """Stroboscopic section beside the running Lyapunov exponent (per second) against periods,

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from pathlib import Path
+from typing import Any
 
 import matplotlib
 
@@ -38,7 +39,9 @@ def apply_style() -> None:
     plt.rcParams.update(STYLE)
 
 
-def figure(nrows: int = 1, ncols: int = 1, width: float = 6.4, height: float = 4.0, **kw):
+def figure(
+    nrows: int = 1, ncols: int = 1, width: float = 6.4, height: float = 4.0, **kw: Any
+) -> tuple[plt.Figure, Any]:
     """A figure and its axes in rotbeam's style (`plt.subplots` after `apply_style`).
 
     Parameters
@@ -59,7 +62,7 @@ def figure(nrows: int = 1, ncols: int = 1, width: float = 6.4, height: float = 4
     return plt.subplots(nrows, ncols, figsize=(width, height), **kw)
 
 
-def save(fig, pdf: str | Path, png: str | Path | None = None) -> None:
+def save(fig: plt.Figure, pdf: str | Path, png: str | Path | None = None) -> None:
     """Write the figure as PDF (and PNG) atomically (`io.atomic_write`), then close it.  The
     format comes from the final name's suffix (the temporary name ends in `.part`).
 
@@ -81,7 +84,7 @@ def save(fig, pdf: str | Path, png: str | Path | None = None) -> None:
     plt.close(fig)
 
 
-def panel_label(ax, text: str) -> None:
+def panel_label(ax: plt.Axes, text: str) -> None:
     """Write a panel's label, e.g. "(a)", in bold at the top left corner of its axes.
 
     Parameters
