@@ -75,7 +75,23 @@ def _imported_names(tree: ast.Module, package: str | None) -> set[str]:
 
 def code_dependencies(script: str | Path, package_dir: str | Path) -> list[Path]:
     """Every module file of the package in ``package_dir`` that ``script`` imports, transitively
-    (sorted; the script itself is not included: Snakemake tracks it)."""
+    (sorted; the script itself is not included: Snakemake tracks it).
+
+    Imports inside functions and relative imports count, and so does the ``__init__`` of every
+    package on the way.
+
+    Parameters
+    ----------
+    script : str or Path
+        The workflow script.
+    package_dir : str or Path
+        The package's directory (e.g. ``rotbeam/``); only its modules are followed.
+
+    Returns
+    -------
+    list of Path
+        The module files, resolved and sorted.
+    """
     package_dir = Path(package_dir).resolve()
     root = package_dir.parent
     top = package_dir.name
@@ -120,7 +136,20 @@ def _package_of(module: Path, root: Path) -> str:
 
 def normalised_code(path: str | Path, root: str | Path) -> str:
     """The code of module ``path`` (under ``root``) without comments, docstrings or positions:
-    what a run depends on."""
+    what a run depends on.
+
+    Parameters
+    ----------
+    path : str or Path
+        The module file.
+    root : str or Path
+        The directory holding the package (resolves the module's relative imports).
+
+    Returns
+    -------
+    str
+        ``ast.dump`` of the module without docstrings or positions.
+    """
     path = Path(path).resolve()
     return _read(path, _package_of(path, Path(root).resolve()))[1]
 
@@ -128,7 +157,20 @@ def normalised_code(path: str | Path, root: str | Path) -> str:
 def code_hash(files: list[Path], root: str | Path) -> str:
     """SHA-256 over the normalised code of ``files``, each keyed by its path under ``root`` (so
     that the same code in another checkout hashes the same).  The dump depends on the Python
-    version's ``ast``: a new Python reruns everything once, which it may deserve anyway."""
+    version's ``ast``: a new Python reruns everything once, which it may deserve anyway.
+
+    Parameters
+    ----------
+    files : list of Path
+        The module files (`code_dependencies`), each under ``root``.
+    root : str or Path
+        The directory holding the package.
+
+    Returns
+    -------
+    str
+        The first 16 hexadecimal digits of the digest.
+    """
     digest = hashlib.sha256()
     for path in sorted(files):
         digest.update(Path(path).resolve().relative_to(Path(root).resolve()).as_posix().encode())
@@ -139,6 +181,21 @@ def code_hash(files: list[Path], root: str | Path) -> str:
 
 
 def code_version(script: str | Path, package_dir: str | Path) -> tuple[list[Path], str]:
-    """(the package modules ``script`` runs, the hash of their normalised code)."""
+    """The package modules ``script`` runs and the hash of their normalised code.
+
+    Parameters
+    ----------
+    script : str or Path
+        The workflow script.
+    package_dir : str or Path
+        The package's directory (e.g. ``rotbeam/``).
+
+    Returns
+    -------
+    files : list of Path
+        The module files (`code_dependencies`).
+    hash : str
+        Their `code_hash`: it changes when what runs changes, not with a comment or docstring.
+    """
     files = code_dependencies(script, package_dir)
     return files, code_hash(files, Path(package_dir).resolve().parent)

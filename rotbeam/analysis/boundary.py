@@ -19,7 +19,18 @@ from ..model.secondorder import c0_limit
 
 def lines_of(df: pd.DataFrame) -> list[pd.DataFrame]:
     """The sweep lines in one file: a line per `c_max_target` (a grid beam's file holds all its
-    lines), or the whole frame when it has no such column (one line per file)."""
+    lines), or the whole frame when it has no such column (one line per file).
+
+    Parameters
+    ----------
+    df : pandas.DataFrame
+        One sweep file's rows (one row per drive frequency).
+
+    Returns
+    -------
+    list of pandas.DataFrame
+        One frame per line, in increasing `c_max_target`.
+    """
     if "c_max_target" not in df or df.empty:
         return [df]
     return [line for _, line in df.groupby("c_max_target", sort=True)]
@@ -35,6 +46,29 @@ def boundary_table(
     (solver failures) or from runs that report no converged steady state; `points_unconverged`
     counts the latter.  Unconverged points are left out of f_d*: their RMS is what the solver saw
     when its budget ran out, not the steady state.
+
+    Parameters
+    ----------
+    lines : iterable of pandas.DataFrame
+        Sweep lines (`lines_of`): columns f_d [Hz], delta_rms, amplitude [rad/s], omega0
+        [rad/s], C_max, f0_hz [Hz], optionally converged.
+    thresholds : iterable of float
+        Delta RMS thresholds, dimensionless, each in (0, 1).
+    beam : dict
+        The beam's fields (`Beam(**beam)`), SI units.
+    beam_id : str
+        The beam's label in the table.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per (line, threshold): f_d_grid and f_d_root [Hz], E_star_grid and E_star_root
+        (dimensionless), found, the points used and failed, and a message.
+
+    Raises
+    ------
+    RotbeamInputError
+        If a threshold is not a number in (0, 1).
     """
     b = Beam(**beam)
     rows = []
@@ -80,7 +114,22 @@ def boundary_table(
 
 
 def fit_c(table: pd.DataFrame, column: str = "f_d_root") -> dict:
-    """Nonlinear least squares (scipy curve_fit) of f_d* = c f_0 over the lines of a table."""
+    """Nonlinear least squares (scipy curve_fit) of f_d* = c f_0 over the lines of a table.
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        A boundary table (`boundary_table`), usually of one threshold.
+    column : str
+        The f_d* column to fit: "f_d_root" or "f_d_grid".
+
+    Returns
+    -------
+    dict
+        ``c`` and ``c_stderr`` (dimensionless; NaN with fewer than 2 lines), ``points_used``,
+        ``points_dropped``, ``dropped`` (beam, C_max and reason per dropped line), ``column`` and
+        ``message``.
+    """
     ok = table["found"].astype(bool) & np.isfinite(table[column]) & np.isfinite(table["f0_hz"])
     f0 = table.loc[ok, "f0_hz"].to_numpy(float)
     fd = table.loc[ok, column].to_numpy(float)
@@ -107,8 +156,21 @@ def fit_c(table: pd.DataFrame, column: str = "f_d_root") -> dict:
 def c_per_threshold(
     table: pd.DataFrame, paper: Mapping[float, float] | None = None
 ) -> pd.DataFrame:
-    """Fitted c per threshold (root and grid rule) beside App. E's c_0 and the printed c
-    (`paper`: threshold -> value, from rotbeam/paper/paper_claims.yaml)."""
+    """Fitted c per threshold (root and grid rule) beside App. E's c_0 and the printed c.
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        A boundary table (`boundary_table`) over one or more thresholds.
+    paper : mapping or None
+        Threshold -> the paper's printed c (from rotbeam/paper/paper_claims.yaml); None: none.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per threshold: c_root, c_grid and their standard errors, the lines used and
+        dropped, c0_second_order (App. E's zeta -> 0 root) and c_paper (NaN where not printed).
+    """
     paper = paper or {}
     rows = []
     for th, sub in table.groupby("threshold"):

@@ -1,25 +1,10 @@
 """The effect budget of a scene: what each effect of the model contributes to RMS(y_m) and to
-Delta RMS, and what it costs to simulate.
+Delta RMS, and what it costs to simulate (`rotbeam effects`, `--effects auto`).
 
-Each effect is measured against the scene as given, one at a time:
-
-* an effect that is on is switched off (``switched off``): its share of RMS is
-  (RMS - RMS_without) / RMS, its share of Delta RMS is Delta - Delta_without (Delta RMS is
-  already relative).  Switching off `centrifugal` also switches off `softening`, which is part
-  of the centrifugal load (the row says so).
-* an effect that is off is switched on (``switched on``): the shares are what leaving it out
-  costs, (RMS_with - RMS) / RMS and Delta_with - Delta.
-* damping cannot be switched off: an undamped beam has no steady state.  Its shares are first
-  order in gamma (``first order in gamma``): gamma dRMS/dgamma / RMS by central differences at
-  gamma (1 +- 1 %), the linear extrapolation of RMS to gamma = 0.
-
-One-at-a-time shares do not add up: effects interact (the centrifugal stiffening sets how far
-the Euler load deflects the beam).  So the budget also gives *sequential* shares, which do: the
-effects that are on (damping excepted) are switched off one after another in the order
-`SEQUENCE` (the Euler load, the forcing, last), and effect k's sequential share is
-(RMS_{k-1} - RMS_k) / RMS; they telescope to (RMS - RMS_last) / RMS = 1, since with every load
-off the beam stays straight (RMS_last = 0).  The order matters and is stated.  The one-at-a-time
-share of the Euler load is 1 for the same reason.
+Each effect is switched off (or on, where the scene leaves it out) one at a time; damping, which
+cannot be switched off, is measured by its first-order sensitivity; and sequential shares, the
+effects switched off in the order `SEQUENCE`, add up to 1.  How each share is defined and why:
+docs/model.md, "The effect budget".
 """
 
 from __future__ import annotations
@@ -42,7 +27,11 @@ SEQUENCE = ("extension", "coriolis", "softening", "centrifugal", "euler")
 
 @dataclass(frozen=True)
 class EffectShare:
-    """One effect's row of the budget."""
+    """One effect's row of the budget: how it was measured, its shares and what it cost.
+
+    Shares are dimensionless: ``share_rms`` relative to the scene's RMS(y_m), ``share_delta`` a
+    difference of Delta RMS (docs/model.md, "The effect budget").
+    """
 
     effect: str
     on_in_scene: bool
@@ -56,12 +45,22 @@ class EffectShare:
     note: str = ""
 
     def as_dict(self) -> dict[str, Any]:
+        """The row as JSON-ready fields.
+
+        Returns
+        -------
+        dict
+            Every field of the row by name.
+        """
         return {f.name: getattr(self, f.name) for f in fields(self)}
 
 
 @dataclass
 class EffectBudget:
-    """The scene's own result and one `EffectShare` per effect."""
+    """The scene's own result, one `EffectShare` per effect and the sequential shares.
+
+    What `effect_budget` returns; RMS values are RMS(y_m) / L, times are wall seconds.
+    """
 
     scene: Scene
     rms: float
@@ -74,9 +73,19 @@ class EffectBudget:
 
     @property
     def total_seconds(self) -> float:
+        """Wall time of every run of the budget [s]: the scene's, the rows' and the sequence's."""
         return self.seconds + sum(s.seconds for s in self.shares) + self.sequential_seconds
 
     def as_dict(self) -> dict[str, Any]:
+        """The budget as JSON-ready fields (`rotbeam effects --json`).
+
+        Returns
+        -------
+        dict
+            ``rms_dynamic``, ``delta_rms``, ``seconds``, ``total_seconds``, ``effects`` (one
+            `EffectShare.as_dict` per row) and ``sequential`` (``order``, ``shares``,
+            ``rms_last``).
+        """
         return {
             "rms_dynamic": self.rms,
             "delta_rms": self.delta_rms,
@@ -155,10 +164,24 @@ def _sequential(scene: Scene, base: SceneResult, budget: EffectBudget) -> None:
 
 
 def effect_budget(scene: Scene) -> EffectBudget:
-    """Every effect's share of RMS(y_m) and of Delta RMS at this scene (module docstring).
+    """Every effect's share of RMS(y_m) and of Delta RMS at this scene.
 
-    Costs one simulation of the scene, one per effect (two for damping) and one per effect of
-    the sequence."""
+    Each effect is switched off (or on) one at a time, damping by its first-order sensitivity,
+    and the effects that are on are switched off in turn for the sequential shares
+    (docs/model.md, "The effect budget").  Costs one simulation of the scene, one per effect
+    (two for damping) and one per effect of the sequence.
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene to budget (beam, drive, effects, numerics).
+
+    Returns
+    -------
+    EffectBudget
+        The scene's RMS and Delta RMS, one row per effect and the sequential shares; without
+        rows where the scene has no steady state or no deflection (nothing to share out).
+    """
     base, seconds = _run(scene)
     budget = EffectBudget(scene, base.rms_dynamic, base.delta_rms, seconds)
     if base.rms_dynamic == 0.0 or not base.converged:
@@ -183,7 +206,10 @@ AUTO_TOL = _AUTO_TOL
 
 @dataclass(frozen=True)
 class AutoEffects:
-    """What `auto_effects` chose: the effects, and what the dropped ones were worth."""
+    """What `auto_effects` chose: the effects, and what the dropped ones were worth.
+
+    ``dropped_share`` is the accuracy given up, a dimensionless fraction of RMS(y_m).
+    """
 
     effects: Effects
     kept: list[str]
@@ -193,6 +219,13 @@ class AutoEffects:
     notes: list[str]
 
     def as_dict(self) -> dict[str, Any]:
+        """The choice as JSON-ready fields (``effects_auto`` of `rotbeam simulate --json`).
+
+        Returns
+        -------
+        dict
+            ``kept``, ``dropped``, ``dropped_share``, ``tol`` and ``notes``.
+        """
         return {"kept": self.kept, "dropped": self.dropped, "dropped_share": self.dropped_share,
                 "tol": self.tol, "notes": self.notes}  # fmt: skip
 
@@ -201,7 +234,25 @@ def auto_effects(budget: EffectBudget, tol: float = AUTO_TOL) -> AutoEffects:
     """The effects whose one-at-a-time |share of RMS| is at least `tol` (an effect the scene
     leaves out is switched on when its share is).  Damping stays on (without it there is no
     steady state); softening keeps centrifugal on (it is part of that load).  tol = 0 keeps
-    every effect."""
+    every effect, and switches on every one the scene leaves out (damping included).
+
+    Parameters
+    ----------
+    budget : EffectBudget
+        The scene's budget (`effect_budget`).
+    tol : float
+        Keep the effects whose |share of RMS(y_m)| is at least this, dimensionless, >= 0.
+
+    Returns
+    -------
+    AutoEffects
+        The chosen effects, the kept and dropped names, and what the dropped ones were worth.
+
+    Raises
+    ------
+    ValueError
+        If `tol` is not a number >= 0.
+    """
     if not tol >= 0.0:
         raise ValueError(f"tol must be >= 0, got {tol!r}")
     share = {s.effect: abs(s.share_rms) for s in budget.shares}
@@ -227,7 +278,7 @@ def auto_scene(scene: Scene, tol: float = AUTO_TOL) -> tuple[Scene, AutoEffects,
     scene : Scene
         The scene whose effects are budgeted (at its own drive frequency).
     tol : float
-        Keep the effects whose |share of RMS(y_m)| is at least this.
+        Keep the effects whose |share of RMS(y_m)| is at least this, dimensionless, >= 0.
 
     Returns
     -------
@@ -237,6 +288,11 @@ def auto_scene(scene: Scene, tol: float = AUTO_TOL) -> tuple[Scene, AutoEffects,
         What was kept and dropped, and what the dropped effects were worth.
     budget : EffectBudget
         The budget it rests on (its cost: `total_seconds`).
+
+    Raises
+    ------
+    RotbeamInputError
+        If the scene has no steady state to share out.
     """
     budget = effect_budget(scene)
     if not budget.shares:

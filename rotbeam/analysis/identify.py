@@ -1,24 +1,9 @@
 """Beam parameters (E and gamma by default) from a measured resonance curve RMS(y_m)(f_d).
 
-Least squares with the full model: every residual evaluation runs one periodic steady state per
-measured f_d (`rotbeam.runs.scene.simulate`), each seeded with the orbit of the previous
-evaluation at the same f_d, and evaluations are cached by parameter values (the Jacobian's base
-point is the last residual's).  The fitted parameters are u = log(X / X_start) (positivity, and
-relative steps); the Jacobian is a forward difference of STEP in u.
-
-Uncertainty: cov_u = s^2 (J^T J)^-1 at the optimum, s^2 = RSS / (n - p) when the file gives no
-rms_std (residuals unweighted), else residuals divided by rms_std and s^2 = max(1, chi^2 / (n -
-p)) (the stated errors, inflated when the scatter exceeds them).  The 95 % interval is
-exp(u +- q se_u) X_start, q the Student t quantile with n - p degrees of freedom; X_stderr = X
-se_u (delta method).
-
-A trial point whose runs reach no steady state (a lightly damped resonance can be out of the
-collocation's reach) gets large residuals, so the trust region retreats from it.
-
-Start: E from the data's peak (the model's linear f_0 at Omega_0 + a made equal to the f_d of
-the largest RMS, parabola through the top three points), then gamma from the ratio of the
-model's largest RMS to the data's (a resonant peak scales as 1 / damping).  Other parameters
-start at the scene's values.
+Least squares with the full model in log parameters, one periodic steady state per measured f_d
+and evaluation, with standard errors and 95 % intervals from the Jacobian at the optimum
+(`rotbeam identify`).  The start, the steps, the penalty for runs without a steady state and the
+intervals: docs/calibration.md, "E and gamma from a resonance curve".
 """
 
 from __future__ import annotations
@@ -43,7 +28,7 @@ STEP = 0.01  #: forward-difference step in log(X): 1 %
 BOUND = 3.0  #: |log(X / X_start)| <= BOUND (a factor e^3 = 20 either way)
 #: Default numerics of the fit: N = 20, no Richardson (N = 10 fails near a lightly damped
 #: resonance), and a budget in periods rather than wall time, so that a run that finds no steady
-#: state fails after the same work on any machine (README "Calibration" gives the accuracy cost).
+#: state fails after the same work on any machine (docs/calibration.md gives the accuracy cost).
 FIT_NUMERICS = Numerics(N=20, max_periods=100)
 #: A trial point whose runs find no steady state gets residuals of this size (times the data's
 #: largest value): the trust region shrinks back towards the last good point.
@@ -56,7 +41,23 @@ class IdentifyFailed(Exception):
 
 
 def parse_names(text: str) -> tuple[str, ...]:
-    """'E,gamma' -> ('E', 'gamma'), each a Beam field, no repeats."""
+    """The names of the parameters to fit, from the text of `--fit`: 'E,gamma' -> ('E', 'gamma').
+
+    Parameters
+    ----------
+    text : str
+        A comma list of beam fields (FITTABLE: L, h, b, E, rho, R, gamma).
+
+    Returns
+    -------
+    tuple of str
+        The names in the order given.
+
+    Raises
+    ------
+    RotbeamInputError
+        If the text names nothing, an unknown field, or a field twice.
+    """
     names = tuple(n.strip() for n in text.split(",") if n.strip())
     bad = [n for n in names if n not in FITTABLE]
     if not names or bad:
@@ -71,7 +72,14 @@ def parse_names(text: str) -> tuple[str, ...]:
 
 @dataclass
 class ResonanceModel:
-    """RMS(y_m) at fixed drive frequencies for a beam; orbits reused, results cached."""
+    """RMS(y_m) at fixed drive frequencies for a beam; orbits reused, results cached.
+
+    Called with a `Beam`, it runs one periodic steady state per frequency of `f_d` [Hz] at the
+    speed `omega0` and velocity amplitude `amplitude` [rad/s] and returns RMS(y_m) / L
+    (dimensionless) per frequency; each run is seeded with the last orbit at its frequency, and a
+    beam seen before costs nothing.  `runs` counts steady states, `evaluations` beams.  A run
+    without a steady state raises `IdentifyFailed`.
+    """
 
     f_d: np.ndarray
     omega0: float
@@ -115,6 +123,13 @@ def _describe(beam: Beam) -> str:
 
 @dataclass(frozen=True)
 class Identification:
+    """The result of `identify`: fitted values, standard errors, 95 % intervals and the cost.
+
+    Values are in the beam fields' SI units (E in Pa, gamma in N s/m^2, lengths in m, rho in
+    kg/m^3); the intervals come from log parameters, so they are not symmetric about the value
+    (docs/calibration.md, "E and gamma from a resonance curve").
+    """
+
     names: tuple[str, ...]
     values: dict[str, float]
     stderr: dict[str, float]
@@ -133,6 +148,15 @@ class Identification:
     message: str
 
     def as_dict(self) -> dict[str, object]:
+        """The fit as JSON-ready fields (`rotbeam identify --json`).
+
+        Returns
+        -------
+        dict
+            For each fitted X: ``X``, ``X_stderr``, ``X_ci95`` ([low, high]) and ``X_start``;
+            then ``rss``, ``dof``, ``residual_scale``, ``model_rms``, ``evaluations``, ``runs``,
+            ``seconds``, ``success`` and ``message``.
+        """
         out: dict[str, object] = {}
         for n in self.names:
             out[n] = self.values[n]
@@ -165,7 +189,33 @@ def _peak_frequency(curve: ResonanceCurve) -> float:
 
 def start_values(curve: ResonanceCurve, names: tuple[str, ...], beam: Beam,
                  model: ResonanceModel) -> Beam:  # fmt: skip
-    """The fit's start (module docstring): E from the peak's f_d, then gamma from its height."""
+    """The fit's start: E from the peak's f_d, then gamma from its height.
+
+    E is set so that the model's linear f_0 at Omega_0 + a equals the f_d of the data's peak;
+    gamma is scaled by the ratio of the model's largest RMS to the data's (docs/calibration.md,
+    "E and gamma from a resonance curve").  Other fields keep the beam's values.
+
+    Parameters
+    ----------
+    curve : ResonanceCurve
+        The measured resonance curve.
+    names : tuple of str
+        The fields to fit; only E and gamma get a start of their own.
+    beam : Beam
+        The beam to start from.
+    model : ResonanceModel
+        The model at the measured frequencies (its runs count towards the fit's cost).
+
+    Returns
+    -------
+    Beam
+        The beam with the start values.
+
+    Raises
+    ------
+    IdentifyFailed
+        If a start value leaves the beam's range.
+    """
     if "E" in names:
         target = _peak_frequency(curve)
         for _ in range(6):  # f_0^2 is affine in E at fixed speed: converges in a few steps
@@ -193,7 +243,43 @@ def identify(
     effects: Effects | None = None,
     numerics: Numerics | None = None,
 ) -> Identification:
-    """Least-squares fit of `names` to the measured curve (module docstring)."""
+    """Least-squares fit of beam parameters to a measured resonance curve, with intervals.
+
+    Every residual evaluation runs the full model's periodic steady state at every measured
+    f_d; the parameters are fitted as log(X / X_start) with a trust region, and the standard
+    errors and 95 % intervals come from the Jacobian at the optimum (docs/calibration.md, "E and
+    gamma from a resonance curve").
+
+    Parameters
+    ----------
+    curve : ResonanceCurve
+        The measurement: f_d [Hz], RMS(y_m) (dimensionless) and optionally its std.
+    omega0 : float
+        Mean angular velocity of the measurement, Omega_0 [rad/s].
+    amplitude : float
+        Velocity amplitude a of the drive [rad/s].
+    names : tuple of str
+        Beam fields to fit (`parse_names`).
+    beam : Beam or None
+        The beam to start from and to hold the other fields (default: Table 1).
+    effects : Effects or None
+        Effects of the model (default: `Effects()`).
+    numerics : Numerics or None
+        Numerics of every run (default: FIT_NUMERICS, N = 20).
+
+    Returns
+    -------
+    Identification
+        Fitted values, standard errors, intervals, the fitted beam and its curve, and the cost.
+
+    Raises
+    ------
+    RotbeamInputError
+        If the curve has no more points than there are parameters.
+    IdentifyFailed
+        If the fit cannot be carried out: no steady state at the start or the optimum, or a beam
+        out of range.
+    """
     t0 = time.perf_counter()
     model = ResonanceModel(curve.f_d, omega0, amplitude, effects or Effects(),
                            numerics or FIT_NUMERICS)  # fmt: skip

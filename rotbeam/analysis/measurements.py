@@ -21,7 +21,28 @@ from ..config.errors import RotbeamInputError
 def read_columns(
     path: str | Path, required: tuple[str, ...], optional: tuple[str, ...] = ()
 ) -> dict[str, np.ndarray]:
-    """The named columns of a CSV file as float arrays, every cell checked finite."""
+    """The named columns of a CSV file as float arrays, every cell checked finite.
+
+    Parameters
+    ----------
+    path : str or Path
+        The CSV file (a header row; lines starting with '#' are comments).
+    required : tuple of str
+        Columns the file must have.
+    optional : tuple of str
+        Columns read when present.
+
+    Returns
+    -------
+    dict
+        Column name -> float array, for the required columns and the optional ones present.
+
+    Raises
+    ------
+    RotbeamInputError
+        If the file does not exist or is not a readable CSV, lacks a required column, or has a
+        cell that is not a finite number.
+    """
     path = Path(path)
     name = str(path)
     if not path.is_file():
@@ -58,7 +79,22 @@ def _numeric(values: pd.Series, col: str, name: str) -> np.ndarray:
 
 
 def check_increasing(x: np.ndarray, col: str, name: str) -> None:
-    """The abscissa must be strictly increasing (sorted, no repeats)."""
+    """Check that an abscissa is strictly increasing (sorted, no repeats).
+
+    Parameters
+    ----------
+    x : numpy.ndarray
+        The column's values.
+    col : str
+        The column's name, for the message.
+    name : str
+        The file's name, for the message.
+
+    Raises
+    ------
+    RotbeamInputError
+        At the first row where `x` repeats or decreases.
+    """
     dx = np.diff(x)
     bad = np.flatnonzero(dx <= 0)
     if bad.size:
@@ -86,7 +122,23 @@ MIN_RINGDOWN_POINTS = 20
 
 def load_ringdown(path: str | Path) -> Ringdown:
     """A ring-down file (columns t, y), checked: numbers, >= MIN_RINGDOWN_POINTS rows, t sorted
-    and uniformly enough sampled for an FFT start (steps within a factor 2 of the median)."""
+    and uniformly enough sampled for an FFT start (steps within a factor 2 of the median).
+
+    Parameters
+    ----------
+    path : str or Path
+        CSV file with columns t [s] and y (any unit).
+
+    Returns
+    -------
+    Ringdown
+        The record, with the file's name as its source.
+
+    Raises
+    ------
+    RotbeamInputError
+        If the file breaks any of the checks above, or y is constant.
+    """
     cols = read_columns(path, ("t", "y"))
     name = str(path)
     t, y = cols["t"], cols["y"]
@@ -120,7 +172,25 @@ class ResonanceCurve:
 def load_resonance(path: str | Path, n_params: int = 0) -> ResonanceCurve:
     """A resonance-curve file (columns f_d, rms, optional rms_std), checked: numbers, f_d > 0
     strictly increasing, rms >= 0, rms_std > 0, more rows than `n_params` (the fit needs one
-    more to estimate the residual variance)."""
+    more to estimate the residual variance).
+
+    Parameters
+    ----------
+    path : str or Path
+        CSV file with columns f_d [Hz], rms (RMS(y_m), dimensionless) and optionally rms_std.
+    n_params : int
+        Number of parameters to be fitted to the curve (0: no fit planned; at least 2 rows).
+
+    Returns
+    -------
+    ResonanceCurve
+        The curve, with the file's name as its source.
+
+    Raises
+    ------
+    RotbeamInputError
+        If the file breaks any of the checks above.
+    """
     cols = read_columns(path, ("f_d", "rms"), ("rms_std",))
     name = str(path)
     f, r = cols["f_d"], cols["rms"]
@@ -141,4 +211,5 @@ def load_resonance(path: str | Path, n_params: int = 0) -> ResonanceCurve:
 
 
 def finite_or_nan(x: float) -> float:
+    """`x` as a float where it is finite, NaN where it is infinite or NaN."""
     return float(x) if math.isfinite(x) else math.nan

@@ -1,21 +1,10 @@
 """Damping from a ring-down (App. B): fit a damped oscillation, gamma = 2 rho A / t_decay.
 
-Model of the free decay after a perturbation (the first mode, t0 the first sample):
+    y(t) = exp(-(t - t0) / t_decay) (B1 cos w(t - t0) + B2 sin w(t - t0)) + c
 
-    y(t) = exp(-s (t - t0)) (B1 cos w(t - t0) + B2 sin w(t - t0)) + c,   s = 1 / t_decay
-
-fitted by nonlinear least squares (scipy.optimize.least_squares) in (f, s, B1, B2, c), started
-from the FFT peak (zero-padded, parabolic interpolation) and the slope of the log of the Hilbert
-envelope.  Standard errors come from the Jacobian at the optimum and the residual variance,
-cov = s^2 (J^T J)^-1 with s^2 = RSS / (n - 5); t_decay's and gamma's by the delta method
-(gamma = 2 rho A s is linear in s; rho A of the beam is taken as exact).  The amplitude decay
-rate of the model's modes is eta / 2 in units of 1/T, i.e. gamma / (2 rho A): this gamma is the
-one the model uses.
-
-A fit is refused (`RingdownRejected`) rather than reported when the record cannot carry it:
-y never crosses its final value (overdamped, or shorter than a cycle), fewer than MIN_CYCLES
-cycles, no decay distinguishable from zero, overdamped by the fit (Q = pi f t_decay < 1/2), or
-too noisy (SNR < MIN_SNR or gamma's relative standard error > MAX_REL_STDERR).
+by nonlinear least squares, with standard errors from the Jacobian; a record that cannot carry
+the fit is refused (`RingdownRejected`) rather than reported (`rotbeam damping`).  The start, the
+errors and the reasons for refusal: docs/calibration.md, "Damping from a ring-down".
 """
 
 from __future__ import annotations
@@ -42,6 +31,14 @@ class RingdownRejected(Exception):
 
 @dataclass(frozen=True)
 class RingdownFit:
+    """The fitted damped oscillation of a ring-down, gamma for the beam, and the fit's quality.
+
+    Every value has its standard error (``*_stderr``) from the Jacobian and the residual
+    variance.  ``f_hz`` is the oscillation's frequency [Hz]; ``zeta`` is dimensionless; ``snr``
+    is the initial amplitude over the residual's standard deviation; ``cycles`` the record's
+    length in cycles; ``rhoA`` the beam's mass per length [kg/m], taken as exact.
+    """
+
     f_hz: float
     f_hz_stderr: float
     t_decay: float  #: amplitude decay time [s]
@@ -62,9 +59,30 @@ class RingdownFit:
     rhoA: float
 
     def as_dict(self) -> dict[str, float | int]:
+        """The fit as JSON-ready fields (`rotbeam damping --json`).
+
+        Returns
+        -------
+        dict
+            Every field by name.
+        """
         return dict(vars(self))
 
     def curve(self, t: np.ndarray, t0: float) -> np.ndarray:
+        """The fitted oscillation at times `t`, for drawing it over the record.
+
+        Parameters
+        ----------
+        t : numpy.ndarray
+            Times [s].
+        t0 : float
+            The record's first time [s], where the fit's amplitude and phase hold.
+
+        Returns
+        -------
+        numpy.ndarray
+            y(t) in the record's unit: A exp(-(t - t0) / t_decay) cos(w (t - t0) + phase) + c.
+        """
         tt = np.asarray(t) - t0
         w = 2.0 * math.pi * self.f_hz
         return (
@@ -143,7 +161,31 @@ def _start(tt: np.ndarray, y: np.ndarray, c0: float) -> np.ndarray:
 
 
 def fit_ringdown(data: Ringdown, beam: Beam | None = None) -> RingdownFit:
-    """Fit the damped oscillation; gamma for `beam` (default the Table 1 beam)."""
+    """Fit a damped oscillation to a ring-down and give gamma = 2 rho A / t_decay for the beam.
+
+    Nonlinear least squares started from the FFT peak and the log Hilbert envelope; a record
+    that cannot carry the fit is refused rather than reported (docs/calibration.md, "Damping
+    from a ring-down").
+
+    Parameters
+    ----------
+    data : Ringdown
+        The record: times t [s] and deflection y (any unit), checked by `load_ringdown`.
+    beam : Beam or None
+        The beam whose rho A turns the decay time into gamma (default: Table 1).
+
+    Returns
+    -------
+    RingdownFit
+        Frequency [Hz], decay time [s], amplitude, phase [rad], offset, gamma [N s/m^2] and
+        zeta, each with its standard error, and the fit's quality.
+
+    Raises
+    ------
+    RingdownRejected
+        If the record cannot carry the fit: no oscillation, too few cycles, no decay
+        distinguishable from zero, overdamped, or too noisy (the message says which).
+    """
     beam = beam or Beam()
     t, y = np.asarray(data.t, float), np.asarray(data.y, float)
     tt = t - t[0]

@@ -1,21 +1,9 @@
 """What the stated uncertainty of the inputs does to RMS, Delta RMS, f_d* and the verdict.
 
-Inputs are independent normal distributions X ~ N(mean, sd), given as "gamma=0.039+-0.008,
-E=1.22e6+-0.05e6" (CLI) or as a scene-file section `uncertainty: {gamma: "0.039 +- 0.008"}`;
-any beam field (L, h, b, E, rho, R, gamma) and the drive's omega0 and amplitude.  Two methods:
-
-- "linear" (default): 1 + k runs, the plain run and one per uncertain input moved by +1 sd
-  (a secant over one standard deviation, which also averages the response over the spread, not
-  only its slope at the mean).  Output sd = sqrt(sum_i (dY_i)^2); the 95 % interval is mean +-
-  1.96 sd; P(quasi-static) = Phi((threshold - Delta RMS) / sd(Delta RMS)).
-- "sobol": n runs (default 32, a power of two) at a scrambled Sobol design (scipy.stats.qmc,
-  seed 0) mapped through the normal quantile; the mean, sd, the 2.5 / 97.5 % quantiles of the n
-  values and the fraction of quasi-static verdicts.  Catches what the secant misses (a verdict
-  that flips inside the spread, curvature near resonance).
-
-An input with sd = 0 costs nothing and changes nothing: with every sd zero the answer is the
-plain run's.  A sample outside a parameter's range (e.g. gamma < 0 at -2 sd) is an error naming
-the input: a normal spread that wide is not a description of the measurement.
+Inputs are independent normal distributions of beam fields, omega0 and amplitude (e.g.
+"gamma=0.039+-0.008" on the command line, or a scene file's `uncertainty` section), carried
+through the model by a secant per input ("linear", 1 + k runs) or by a scrambled Sobol design
+("sobol").  The methods and what they report: docs/calibration.md, "Uncertainty into the answer".
 """
 
 from __future__ import annotations
@@ -43,7 +31,25 @@ _PM = re.compile(r"^\s*([^+]+?)\s*(?:\+-|\+/-|±)\s*(\S+)\s*$")
 
 
 def parse_spread(name: str, text: object) -> tuple[float, float]:
-    """'0.039 +- 0.008' (or a number: no spread) -> (mean, sd)."""
+    """One input's normal distribution from its text: '0.039 +- 0.008' -> (0.039, 0.008).
+
+    Parameters
+    ----------
+    name : str
+        The input's name, for the error message.
+    text : str or float
+        'mean +- sd' ('+/-' and '±' also read), or a number (no spread).
+
+    Returns
+    -------
+    tuple of float
+        (mean, sd), in the input's own unit (SI, as the beam and drive fields).
+
+    Raises
+    ------
+    RotbeamInputError
+        If the text is not 'mean +- sd', or the mean or sd is not finite, or sd < 0.
+    """
     if isinstance(text, (int, float)) and not isinstance(text, bool):
         mean, sd = float(text), 0.0
     else:
@@ -66,7 +72,24 @@ def parse_spread(name: str, text: object) -> tuple[float, float]:
 
 
 def parse_spec(spec: str | dict | None) -> dict[str, tuple[float, float]]:
-    """A CLI string 'a=m+-s,b=m+-s' or a scene-file mapping -> {name: (mean, sd)}."""
+    """The uncertain inputs of a CLI string 'a=m+-s,b=m+-s' or a scene-file mapping.
+
+    Parameters
+    ----------
+    spec : str, dict or None
+        "gamma=0.039+-0.008,E=1.22e6+-0.05e6", {"gamma": "0.039 +- 0.008"}, or None (none).
+
+    Returns
+    -------
+    dict
+        Input name -> (mean, sd).
+
+    Raises
+    ------
+    RotbeamInputError
+        If a part is not name=mean+-sd, a name is not a beam field, omega0 or amplitude, or a
+        spread does not parse (`parse_spread`).
+    """
     if spec is None:
         return {}
     items: list[tuple[str, object]]
@@ -95,7 +118,29 @@ def parse_spec(spec: str | dict | None) -> dict[str, tuple[float, float]]:
 
 
 def apply(beam: Beam, drive: Drive, values: dict[str, float]) -> tuple[Beam, Drive]:
-    """Beam and drive with the given inputs set; a value out of range names the input."""
+    """Beam and drive with the given inputs set; a value out of range names the input.
+
+    Parameters
+    ----------
+    beam : Beam
+        The beam to change.
+    drive : Drive
+        The drive to change.
+    values : dict
+        Input name -> value (beam fields and omega0, amplitude; SI units).
+
+    Returns
+    -------
+    beam : Beam
+        The beam with its inputs set.
+    drive : Drive
+        The drive with its inputs set.
+
+    Raises
+    ------
+    RotbeamInputError
+        If a value lies outside its field's range (a spread too wide for a normal distribution).
+    """
     b = {k: v for k, v in values.items() if k in BEAM_FIELDS}
     d = {k: v for k, v in values.items() if k in DRIVE_FIELDS}
     try:
@@ -109,7 +154,11 @@ def apply(beam: Beam, drive: Drive, values: dict[str, float]) -> tuple[Beam, Dri
 
 @dataclass(frozen=True)
 class Propagated:
-    """Mean, sd and 95 % interval of each output; P(quasi-static); the cost."""
+    """Mean, sd and 95 % interval of each output; P(quasi-static); the cost.
+
+    What `propagate` returns.  Outputs keep their own units (RMS and Delta RMS dimensionless,
+    f_d* and f_0 in Hz); ``p_quasistatic`` is None where no threshold applies.
+    """
 
     method: str
     inputs: dict[str, tuple[float, float]]
@@ -123,6 +172,14 @@ class Propagated:
     failed: int  #: runs without an answer (left out of the statistics)
 
     def as_dict(self) -> dict[str, object]:
+        """The statistics as JSON-ready fields (``uncertainty`` of the commands' --json).
+
+        Returns
+        -------
+        dict
+            ``method``, ``runs``, ``seconds``, ``failed``, ``inputs`` (name -> mean, sd), one
+            entry per output (mean, sd, ci95) and ``p_quasistatic`` where there is one.
+        """
         out: dict[str, object] = {"method": self.method, "runs": self.runs,
                                   "seconds": self.seconds, "failed": self.failed,
                                   "inputs": {k: {"mean": m, "sd": s}
@@ -141,7 +198,27 @@ def _normal_cdf(x: float) -> float:
 
 def design(inputs: dict[str, tuple[float, float]], method: str, samples: int = 32
            ) -> list[dict[str, float]]:  # fmt: skip
-    """The input values of every run: the plain run first, then the method's points."""
+    """The input values of every run: the plain run first, then the method's points.
+
+    Parameters
+    ----------
+    inputs : dict
+        Input name -> (mean, sd).
+    method : str
+        "linear" (one run per input with sd > 0, moved by +1 sd) or "sobol".
+    samples : int
+        Sobol runs, a power of two >= 2.
+
+    Returns
+    -------
+    list of dict
+        Input name -> value for each run; only the plain run where every sd is zero.
+
+    Raises
+    ------
+    RotbeamInputError
+        If the method is unknown or, for "sobol", `samples` is not a power of two >= 2.
+    """
     if method not in METHODS:
         raise RotbeamInputError(f"uncertainty method {method!r}; allowed: {', '.join(METHODS)}")
     plain = {k: m for k, (m, _) in inputs.items()}
@@ -165,7 +242,30 @@ def design(inputs: dict[str, tuple[float, float]], method: str, samples: int = 3
 def summarise(method: str, inputs: dict[str, tuple[float, float]],
               outputs: list[dict[str, float]], threshold: float | None,
               seconds: float) -> Propagated:  # fmt: skip
-    """Statistics of the runs' outputs (first run the plain one) by the method's rule."""
+    """Statistics of the runs' outputs (first run the plain one) by the method's rule.
+
+    "linear": the plain run's value as mean and sd = sqrt(sum (Y_i - Y_0)^2), interval mean +-
+    1.96 sd, P(quasi-static) = Phi((threshold - Delta RMS) / sd).  "sobol": sample mean and sd,
+    the 2.5 / 97.5 % quantiles and the fraction of runs below the threshold, over the runs with
+    an answer.
+
+    Parameters
+    ----------
+    method : str
+        "linear" or "sobol".
+    inputs : dict
+        Input name -> (mean, sd), reported with the result.
+    outputs : list of dict
+        Output name -> value per run, in the order of `design` (NaN: no answer).
+    threshold : float or None
+        Delta RMS threshold (dimensionless) for P(quasi-static); None: no probability.
+    seconds : float
+        Wall time of the runs [s], reported with the result.
+
+    Returns
+    -------
+    Propagated
+    """
     keys = list(outputs[0])
     vals = {k: np.array([o.get(k, math.nan) for o in outputs], dtype=float) for k in keys}
     ok = np.all([np.isfinite(v) for v in vals.values()], axis=0)
@@ -211,7 +311,32 @@ def propagate(
     threshold: float | None = None,
 ) -> Propagated:
     """Run `run(values)` at every design point and summarise; `run` returns named outputs
-    (NaN where it found no answer; those are counted in `failed`)."""
+    (NaN where it found no answer; those are counted in `failed`).
+
+    Parameters
+    ----------
+    inputs : dict
+        Input name -> (mean, sd).
+    run : callable
+        Input name -> value, to output name -> value (e.g. rms_dynamic, delta_rms).
+    method : str
+        "linear" or "sobol".
+    samples : int
+        Sobol runs, a power of two >= 2.
+    threshold : float or None
+        Delta RMS threshold (dimensionless) for P(quasi-static); None: no probability.
+
+    Returns
+    -------
+    Propagated
+        Mean, sd and 95 % interval of each output, P(quasi-static), the runs and their cost.
+
+    Raises
+    ------
+    RotbeamInputError
+        If the method or the number of samples is not allowed (`design`), or a sample lies
+        outside a parameter's range.
+    """
     t0 = time.perf_counter()
     points = design(inputs, method, samples)
     outputs = [run(v) for v in points]
@@ -219,7 +344,7 @@ def propagate(
 
 
 def read_inputs(section: Any, spec: str | None, where: str = "scene file") -> dict:
-    """{name: (mean, sd)} from a scene file's `uncertainty` section and a CLI spec (which wins).
+    """The uncertain inputs of a scene file's `uncertainty` section and a CLI spec (which wins).
 
     Parameters
     ----------
@@ -234,6 +359,11 @@ def read_inputs(section: Any, spec: str | None, where: str = "scene file") -> di
     -------
     dict
         Input name -> (mean, sd).
+
+    Raises
+    ------
+    RotbeamInputError
+        If the section is not a mapping, or an input does not parse (`parse_spec`).
     """
     if section is not None and not isinstance(section, dict):
         raise RotbeamInputError(
@@ -243,7 +373,25 @@ def read_inputs(section: Any, spec: str | None, where: str = "scene file") -> di
 
 
 def at_means(scene: Scene, inputs: dict[str, tuple[float, float]]) -> Scene:
-    """The scene with every uncertain input at its mean (the plain run is the run there)."""
+    """The scene with every uncertain input at its mean (the plain run is the run there).
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene as given.
+    inputs : dict
+        Input name -> (mean, sd).
+
+    Returns
+    -------
+    Scene
+        The scene with each input's field set to its mean (the scene itself without inputs).
+
+    Raises
+    ------
+    RotbeamInputError
+        If a mean lies outside its field's range.
+    """
     if not inputs:
         return scene
     beam, drive = apply(scene.beam, scene.drive, {k: m for k, (m, _) in inputs.items()})
@@ -273,11 +421,18 @@ def simulate_spread(
     samples : int
         Sobol runs (a power of two).
     threshold : float
-        Delta RMS below which a run counts as quasi-static.
+        Delta RMS below which a run counts as quasi-static, dimensionless, in (0, 1).
 
     Returns
     -------
     Propagated
+        Mean, sd and 95 % interval of rms_dynamic, rms_quasistatic and delta_rms, and
+        P(quasi-static).
+
+    Raises
+    ------
+    RotbeamInputError
+        If the method or samples are not allowed, or a sample lies outside a field's range.
     """
     from ..runs.scene import simulate
 
@@ -303,7 +458,36 @@ def critical_spread(
     threshold: float = 0.10,
     ftol: float = 1e-3,
 ) -> Propagated:
-    """f_d* and c = f_d* / f_0 over the inputs' spread (`plain`: the search at the means)."""
+    """f_d* and c = f_d* / f_0 over the inputs' spread (`plain`: the search at the means).
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene at the inputs' means (`at_means`).
+    plain : Critical
+        The search at the means, reused for the plain run.
+    inputs : dict
+        Input name -> (mean, sd).
+    method : str
+        "linear" or "sobol".
+    samples : int
+        Sobol runs (a power of two).
+    threshold : float
+        The Delta RMS threshold of every search, dimensionless, in (0, 1).
+    ftol : float
+        Relative tolerance of every search on f_d* (`critical`'s rtol), dimensionless.
+
+    Returns
+    -------
+    Propagated
+        Mean, sd and 95 % interval of f_d_star [Hz], c (dimensionless) and f0_hz [Hz]; no
+        probability of a verdict.
+
+    Raises
+    ------
+    RotbeamInputError
+        If the method or samples are not allowed, or a sample lies outside a field's range.
+    """
     from .verdict import critical
 
     def run(values: dict[str, float]) -> dict[str, float]:

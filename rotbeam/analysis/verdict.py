@@ -1,24 +1,10 @@
 """The engineer's question for one scene: is the quasi-static answer good enough here?
 
-The criterion is the paper's: the quasi-static model is adequate where
-Delta RMS = |RMS_dyn - RMS_QS| / RMS_dyn stays below a threshold (0.10 in the paper's main
-figures).  Beside the answer of the full model this module gives the linear estimate of where
-the boundary lies along the drive frequency at this rotation speed, so that the user sees how
-far from it the scene is:
-
-    f_d* ~ c_0(zeta, threshold) f_0,
-
-f_0 the first in-plane frequency of the linearised beam at the maximal speed Omega_0 + a (the
-premise of Eq. Southwell) and c_0 the first root of the canonical damped oscillator's Delta RMS
-(App. E, `secondorder.c0_root`).  On the reference beam the full model's fitted c is 2-3 %
-above c_0 (README, "Results"); the estimate is a guide, the verdict comes from the simulation.
-A beam too damped for that root (its response never exceeds the static one by the threshold)
-crosses on the other branch of |Delta RMS|, where the response lags the static one by the
-threshold (`_lag_ratio`); the estimate then comes from there.
-
-`critical` answers the other way round: f_d* of the full model at one speed, by root
-finding started at that estimate (the CLI's `rotbeam critical`).
-The verdict's figure is `rotbeam.report.verdict_plot`.
+`judge` gives the full model's verdict (Delta RMS against a threshold, the paper's criterion)
+and the linear estimate f_d* ~ c_0 f_0 of where the boundary lies; `critical` finds f_d* of the
+full model at one speed by root finding started at that estimate (`rotbeam critical`).  The
+criterion, the estimate, its lag branch for overdamped beams and the search: docs/model.md, "The
+verdict and the linear estimate of f_d*".  The verdict's figure is `rotbeam.report.verdict_plot`.
 """
 
 from __future__ import annotations
@@ -38,7 +24,12 @@ from ..runs.scene import Scene, SceneResult, simulate
 
 @dataclass(frozen=True)
 class Verdict:
-    """Whether the quasi-static model is adequate for one simulated scene."""
+    """Whether the quasi-static model is adequate for one simulated scene.
+
+    What `judge` returns: the full model's answer (Delta RMS against the threshold, both
+    dimensionless) beside the linear estimate of where the boundary lies, so that a reader sees
+    how far from it the scene is.
+    """
 
     threshold: float
     delta_rms: float
@@ -50,6 +41,15 @@ class Verdict:
     text: str  #: one line for a reader
 
     def as_dict(self) -> dict[str, float | bool | str | None]:
+        """The verdict as JSON-ready fields (part of `rotbeam simulate --json`).
+
+        Returns
+        -------
+        dict
+            ``threshold``, ``quasistatic_ok``, ``f0_hz`` [Hz], ``c0`` (dimensionless),
+            ``fd_star_estimate_hz`` [Hz] and ``verdict`` (the one-line text).  Delta RMS is not
+            repeated here: the scene's summary carries it.
+        """
         return {
             "threshold": self.threshold,
             "quasistatic_ok": self.quasistatic_ok,
@@ -61,7 +61,31 @@ class Verdict:
 
 
 def judge(result: SceneResult, threshold: float = 0.10) -> Verdict:
-    """The verdict of the full model on one scene, and the linear estimate of the boundary."""
+    """The verdict of the full model on one scene, and the linear estimate of the boundary.
+
+    Quasi-static is good enough where Delta RMS < `threshold`; a dynamic run without a steady
+    state gives no verdict.  The linear estimate f_d* = c_0 f_0 (or the lag branch for overdamped
+    beams) tells how far from the boundary the scene's f_d lies (docs/model.md, "The verdict and
+    the linear estimate of f_d*").
+
+    Parameters
+    ----------
+    result : SceneResult
+        The simulated scene (`rotbeam.runs.scene.simulate`).
+    threshold : float
+        The Delta RMS threshold, dimensionless, in (0, 1); 0.10 is the paper's.
+
+    Returns
+    -------
+    Verdict
+        The answer (`quasistatic_ok`: True, False or None), f_0 [Hz], c_0, the estimate of f_d*
+        [Hz] and one line of text.
+
+    Raises
+    ------
+    RotbeamInputError
+        If `threshold` is not a number in (0, 1).
+    """
     th = check_threshold(threshold)
     beam, drive = result.scene.beam, result.scene.drive
     f0 = resonance_frequency_hz(beam, drive.omega0, drive.amplitude)
@@ -81,7 +105,28 @@ def judge(result: SceneResult, threshold: float = 0.10) -> Verdict:
 
 
 def linear_estimate(zeta: float, threshold: float) -> tuple[float, float, str]:
-    """(App. E's c_0 or NaN, the ratio f_d*/f_0 to use, a note naming the branch if not c_0)."""
+    """The linear estimate of f_d* / f_0 at a damping ratio: App. E's c_0, or the lag branch.
+
+    c_0 is the first root of the canonical damped oscillator's Delta RMS; a beam too damped for
+    it crosses where its response lags the static one by the threshold (docs/model.md, "The
+    verdict and the linear estimate of f_d*").
+
+    Parameters
+    ----------
+    zeta : float
+        Damping ratio of the first mode, dimensionless, >= 0.
+    threshold : float
+        The Delta RMS threshold, dimensionless, in (0, 1).
+
+    Returns
+    -------
+    c0 : float
+        App. E's c_0 (dimensionless), NaN where no root exists.
+    ratio : float
+        The ratio f_d* / f_0 to use: c_0, or the lag branch's root.
+    note : str
+        " = c_0 f_0", or a note naming the lag branch, for the verdict's text.
+    """
     try:
         c0 = c0_root(zeta, threshold)
         return c0, c0, " = c_0 f_0"
@@ -108,7 +153,11 @@ class _NoSteadyState(Exception):
 
 @dataclass(frozen=True)
 class Critical:
-    """The drive frequency f_d* at which Delta RMS reaches the threshold, at one rotation speed."""
+    """The drive frequency f_d* at which Delta RMS reaches the threshold, at one rotation speed.
+
+    What `critical` returns: the root (or why there is none), where the search started and every
+    full-model run it made, so that a reader can judge the answer and its cost.
+    """
 
     found: bool
     f_d_star: float  #: Hz; NaN unless found
@@ -120,6 +169,15 @@ class Critical:
     message: str
 
     def as_dict(self) -> dict[str, object]:
+        """The search as JSON-ready fields (`rotbeam critical --json`).
+
+        Returns
+        -------
+        dict
+            ``found``, ``f_d_star`` [Hz], ``threshold``, ``f0_hz`` [Hz], ``estimate_hz`` [Hz],
+            ``seconds`` [s], ``message``, ``c`` = f_d* / f_0 (dimensionless), ``evaluations``
+            (full-model runs) and ``visited`` ([f_d Hz, Delta RMS] per run, in order).
+        """
         out = {k: getattr(self, k) for k in ("found", "f_d_star", "threshold", "f0_hz",
                                              "estimate_hz", "seconds", "message")}  # fmt: skip
         out["c"] = self.f_d_star / self.f0_hz
@@ -184,11 +242,17 @@ def critical_start_hz(scene: Scene, threshold: float = 0.10) -> float:
     scene : Scene
         The beam and the drive's speed and amplitude (its f_d is not read).
     threshold : float
-        The Delta RMS threshold, in (0, 1).
+        The Delta RMS threshold, dimensionless, in (0, 1).
 
     Returns
     -------
     float
+        The linear estimate of f_d* [Hz].
+
+    Raises
+    ------
+    RotbeamInputError
+        If `threshold` is not a number in (0, 1).
     """
     beam, drive = scene.beam, scene.drive
     f0 = resonance_frequency_hz(beam, drive.omega0, drive.amplitude)
@@ -214,15 +278,22 @@ def critical(scene: Scene, threshold: float = 0.10, rtol: float = 1e-3) -> Criti
     Parameters
     ----------
     scene : Scene
-        Beam, drive (its f_d is where nothing starts: the search sets it), effects, numerics.
+        Beam, drive (its f_d is not read: the search sets it), effects, numerics.
     threshold : float
-        The Delta RMS threshold, in (0, 1).
+        The Delta RMS threshold, dimensionless, in (0, 1).
     rtol : float
-        Relative tolerance on f_d*, in [1e-8, 0.1].
+        Relative tolerance on f_d*, dimensionless, in [1e-8, 0.1].
 
     Returns
     -------
     Critical
+        f_d* [Hz] and ``found = True``, or NaN, ``found = False`` and the reason in ``message``;
+        with f_0, the start, every run made and the wall time.
+
+    Raises
+    ------
+    RotbeamInputError
+        If `threshold` is not in (0, 1) or `rtol` not a float in [1e-8, 0.1].
     """
     from scipy.optimize import brentq
 

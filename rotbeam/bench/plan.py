@@ -1,7 +1,8 @@
 """The benchmark's plan: the scenes, the curves (integrator and steady-state strategy), the
 tolerance ladder, the grids and budgets, and the plan's mapping to and from a config dict.
 
-What the benchmark measures and why is said in `rotbeam.bench.run`.
+What the benchmark measures and why: docs/numerics.md, "What accuracy costs, and how to trade
+it".
 """
 
 from __future__ import annotations
@@ -14,7 +15,7 @@ from ..config.errors import RotbeamInputError
 from ..model.params import Beam
 from ..solve.numerics import Numerics
 
-#: (label, Omega_0 [rad/s], f_d [Hz]) on the reference beam (issue #5)
+#: (label, Omega_0 [rad/s], f_d [Hz]) of the benchmark's scenes on the reference beam
 SCENES: tuple[tuple[str, float, float], ...] = (
     ("O5_f2", 5.0, 2.0),
     ("O5_f7", 5.0, 7.0),
@@ -37,6 +38,19 @@ class Curve:
     knobs: tuple[str, ...]  #: Numerics fields set to the tolerance of the ladder
 
     def numerics_at(self, N: int, tol: float) -> Numerics:
+        """The curve's numerics at a grid and a rung of the tolerance ladder.
+
+        Parameters
+        ----------
+        N : int
+            Grid intervals.
+        tol : float
+            The tolerance, dimensionless, set on every knob of the curve.
+
+        Returns
+        -------
+        Numerics
+        """
         return Numerics(N=N, **self.numerics, **{k: tol for k in self.knobs})
 
 
@@ -97,7 +111,12 @@ CURVES: dict[str, Curve] = {
 
 @dataclass
 class BenchPlan:
-    """What to run.  `quick()` is the small plan the tests and the quick config use."""
+    """What to run.  `quick()` is the small plan the tests and the quick config use.
+
+    Scenes are (label, Omega_0 [rad/s], f_d [Hz]) on `beam`; tolerances are dimensionless;
+    `max_seconds` is wall time per run [s]; `target` and `accept` are relative errors of RMS(y_m).
+    A plan out of range raises `RotbeamInputError` when it is made.
+    """
 
     scenes: tuple[tuple[str, float, float], ...] = SCENES
     curves: tuple[str, ...] = tuple(CURVES)
@@ -109,7 +128,7 @@ class BenchPlan:
     ref_tol: float = 1e-7
     max_seconds: float = 60.0  #: per run; a curve's ladder stops at its first failure
     target: float = 1e-3  #: RMS error at which speed-ups are compared
-    accept: float = 5e-3  #: error that a default must keep (README: 0.5 %)
+    accept: float = 5e-3  #: error that a default must keep (docs/numerics.md: 0.5 %)
     surrogate: bool = True
     beam: Beam = field(default_factory=Beam)
 
@@ -133,6 +152,7 @@ class BenchPlan:
 
     @classmethod
     def quick(cls) -> BenchPlan:
+        """The small plan: two scenes, five curves, two tolerances, grids N = 10 and 20."""
         return cls(
             scenes=(SCENES[0], SCENES[3]),
             curves=("baseline", "radau_qs", "trbdf2_qs", "collocation", "default"),
@@ -145,6 +165,18 @@ class BenchPlan:
 
 
 def plan_to_dict(plan: BenchPlan) -> dict[str, Any]:
+    """The plan as a plain mapping (the beam as its fields), e.g. for a YAML or JSON file.
+
+    Parameters
+    ----------
+    plan : BenchPlan
+        The plan.
+
+    Returns
+    -------
+    dict
+        BenchPlan field -> value.
+    """
     d = asdict(plan)
     d["beam"] = asdict(plan.beam)
     return d
@@ -154,7 +186,24 @@ OUTPUT_STEMS = ("work_precision",)
 
 
 def plan_from_dict(spec: dict[str, Any] | None) -> BenchPlan:
-    """BenchPlan from a config mapping (keys = BenchPlan fields; `quick: true` starts small)."""
+    """BenchPlan from a config mapping (keys = BenchPlan fields; `quick: true` starts small).
+
+    Parameters
+    ----------
+    spec : dict or None
+        The config's `benchmark` section (or `rotbeam bench --config`); None: the full plan.
+
+    Returns
+    -------
+    BenchPlan
+        The full or quick plan with the given fields replaced.
+
+    Raises
+    ------
+    RotbeamInputError
+        If a key is not a BenchPlan field (`beam` excepted), a value has the wrong shape, or the
+        plan is out of range.
+    """
     spec = dict(spec or {})
     base = BenchPlan.quick() if spec.pop("quick", False) else BenchPlan()
     allowed = {f for f in asdict(base) if f != "beam"}

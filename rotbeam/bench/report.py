@@ -17,13 +17,44 @@ from .plan import CURVES, BenchPlan
 
 
 def cheapest(runs: pd.DataFrame, curve: str, target: float, study: str = "method") -> pd.Series:
-    """Per scene: seconds of the cheapest run of `curve` with RMS error <= target (NaN: none)."""
+    """Per scene: seconds of the cheapest run of `curve` with RMS error <= target (NaN: none).
+
+    Parameters
+    ----------
+    runs : pandas.DataFrame
+        Every run of the benchmark (`run_benchmark`).
+    curve : str
+        The curve's name.
+    target : float
+        The relative error of RMS(y_m) to reach.
+    study : str
+        "method", "grid" or "surrogate".
+
+    Returns
+    -------
+    pandas.Series
+        Wall time [s] by scene, for the scenes where the curve reached the target.
+    """
     sel = runs[(runs.curve == curve) & (runs.study == study) & (runs.err_rms <= target)]
     return sel.groupby("scene", sort=False)["seconds"].min()
 
 
 def speedups(runs: pd.DataFrame, target: float) -> pd.DataFrame:
-    """Per scene and curve: cheapest seconds at the target error and ratio to the baseline."""
+    """Per scene and curve: cheapest seconds at the target error and ratio to the baseline.
+
+    Parameters
+    ----------
+    runs : pandas.DataFrame
+        Every run of the benchmark (`run_benchmark`).
+    target : float
+        The relative error of RMS(y_m) to reach.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per (scene, curve): seconds_at_target and baseline_seconds [s], speedup (NaN
+        where either never reached the target).
+    """
     scenes = list(dict.fromkeys(runs.scene))
     base = cheapest(runs, "baseline", target).reindex(scenes)
     out = []
@@ -37,7 +68,21 @@ def speedups(runs: pd.DataFrame, target: float) -> pd.DataFrame:
 
 def choose_default(runs: pd.DataFrame, accept: float) -> dict[str, Any]:
     """Cheapest grid setting (N, Richardson or not) whose RMS and Delta RMS errors against the
-    converged reference stay within `accept` on every scene."""
+    converged reference stay within `accept` on every scene.
+
+    Parameters
+    ----------
+    runs : pandas.DataFrame
+        Every run of the benchmark (`run_benchmark`); its grid study is read.
+    accept : float
+        The largest relative error a default may have.
+
+    Returns
+    -------
+    dict
+        ``accept``, ``chosen`` ({"setting", "N"}, or None where no setting keeps it) and
+        ``table`` (per setting and N: worst error, total seconds, within).
+    """
     grid = runs[runs.study == "grid"]
     ok = []
     for (curve, N), g in grid.groupby(["curve", "N"]):
@@ -57,6 +102,24 @@ def choose_default(runs: pd.DataFrame, accept: float) -> dict[str, Any]:
 def summary_markdown(
     runs: pd.DataFrame, refs: pd.DataFrame, plan: BenchPlan, header: Iterable[str] = ()
 ) -> str:
+    """The benchmark's Markdown summary: speed-ups, references, grid study and every run.
+
+    Parameters
+    ----------
+    runs : pandas.DataFrame
+        Every run of the benchmark (`run_benchmark`).
+    refs : pandas.DataFrame
+        The references, one row per scene.
+    plan : BenchPlan
+        The plan (target, accept, N, grid tolerance).
+    header : iterable of str
+        Lines under the title (machine, scenes, budget).
+
+    Returns
+    -------
+    str
+        The Markdown document.
+    """
     sp = speedups(runs, plan.target)
     wide = sp.pivot(index="curve", columns="scene", values="speedup")
     wide = wide.reindex([c for c in CURVES if c in wide.index]).reset_index()
@@ -95,7 +158,19 @@ FLOOR = 1e-12
 
 
 def plot(runs: pd.DataFrame, refs: pd.DataFrame, plan: BenchPlan, pdf: str, png: str) -> None:
-    """Error against wall time, log-log: one panel per scene (N = plan.N), one for the grid."""
+    """Error against wall time, log-log: one panel per scene (N = plan.N), one for the grid.
+
+    Parameters
+    ----------
+    runs : pandas.DataFrame
+        Every run of the benchmark (`run_benchmark`).
+    refs : pandas.DataFrame
+        The references, one row per scene.
+    plan : BenchPlan
+        The plan (N, target, accept).
+    pdf, png : str
+        The figure's files, written atomically.
+    """
     from matplotlib.ticker import LogLocator, NullFormatter
 
     scenes = list(dict.fromkeys(runs.scene))
@@ -166,7 +241,19 @@ def _grid_panel(ax, runs: pd.DataFrame, scenes: list[str], plan: BenchPlan) -> N
 
 def write_outputs(runs: pd.DataFrame, refs: pd.DataFrame, plan: BenchPlan, stem: str) -> None:
     """`stem`.csv (every run), .md (speed-ups, references, grid study, runs), .pdf, .png, and
-    `stem`_references.csv; all written atomically."""
+    `stem`_references.csv; all written atomically.
+
+    Parameters
+    ----------
+    runs : pandas.DataFrame
+        Every run of the benchmark (`run_benchmark`).
+    refs : pandas.DataFrame
+        The references, one row per scene.
+    plan : BenchPlan
+        The plan that was run.
+    stem : str
+        Path of the outputs without suffix, e.g. results/performance/work_precision.
+    """
     import platform
 
     header = [

@@ -1,27 +1,11 @@
-"""Work-precision benchmark: what each digit of accuracy costs, measured side by side in one run.
+"""The work-precision benchmark's runs: what each digit of accuracy costs, measured side by side.
 
-For a fixed set of scenes on the reference beam, every *curve* (an integrator with a steady-state
-strategy, at N = 40) is run over a ladder of tolerances; each run records its wall time and the
-error of RMS(y_m) and of Delta RMS against references computed in the same run:
-
-* the **same-N reference** (N = 40, tight tolerance): the error of a run against it is what the
-  time integration and the steady-state strategy cost (the spatial error is common to all curves);
-* the **converged reference**: Richardson extrapolation (order 2, measured in tests/test_dynamics)
-  of tight solutions at N = 40 and 80; the error of the grid study (N = 10 ... 80) and of the
-  surrogate is against it.  The same extrapolation from N = 20 and 40 says how many digits the
-  reference has (`reference_digits`).
-
-Errors of RMS are relative.  Delta RMS is itself a relative number that is compared with a
-threshold (0.1 in the paper), so its error is |Delta - Delta_ref| / max(|Delta_ref|, 0.1).
-
-The baseline is the plain port of the paper: scipy Radau with its finite-difference Jacobian, from
-the straight beam at rest, integrated over the time in which every transient decays below the
-target error (`baseline_run`); its ladder varies rtol.  The
-speed-up of a curve on a scene is the ratio of the cheapest baseline run and the cheapest run of
-the curve whose RMS error is below `target` (0.1 %); both measured in the same process.
-
-This module makes the runs; what to run is `rotbeam.bench.plan`, the speed-ups, the chosen
-default, the Markdown summary and the figure are `rotbeam.bench.report`.
+Every curve of the plan (an integrator with a steady-state strategy) runs over a ladder of
+tolerances on each scene; each run records its wall time and the errors of RMS(y_m) and of Delta
+RMS against references computed in the same run (`reference`), beside the baseline, the plain
+port of the paper (`baseline_run`).  What to run is `rotbeam.bench.plan`; the speed-ups, the
+default, the summary and the figure are `rotbeam.bench.report`.  The references, the error
+measures and the results: docs/numerics.md, "What accuracy costs, and how to trade it".
 """
 
 from __future__ import annotations
@@ -78,7 +62,27 @@ def baseline_run(plan: BenchPlan, omega0: float, f_d: float, N: int, rtol: float
     """The plain port of the paper: scipy Radau with its finite-difference Jacobian, from the
     straight beam at rest, over the a-priori transient time tau_tr = 2 ln(1 / target) / eta
     (every mode decays as exp(-eta tau / 2)), then two periods sampled for the RMS; absolute
-    tolerance scipy's default 1e-6, relative tolerance `rtol` (the ladder)."""
+    tolerance scipy's default 1e-6, relative tolerance `rtol` (the ladder).
+
+    Parameters
+    ----------
+    plan : BenchPlan
+        The plan: beam, target error, budget per run.
+    omega0 : float
+        Mean angular velocity Omega_0 [rad/s] (velocity amplitude 1 rad/s).
+    f_d : float
+        Drive frequency [Hz].
+    N : int
+        Grid intervals.
+    rtol : float
+        Relative tolerance of Radau, dimensionless.
+
+    Returns
+    -------
+    dict
+        One run's row: seconds, rms, delta_rms, converged, status, periods, nfev, njev, M,
+        message (rms and delta_rms NaN where the run failed or ran out of time).
+    """
     t0 = time.perf_counter()
     dl = Dimensionless.from_physical(plan.beam, Drive(omega0, 1.0, f_d), Effects())
     model = DiscreteElastica(dl, N)
@@ -109,7 +113,28 @@ def baseline_run(plan: BenchPlan, omega0: float, f_d: float, N: int, rtol: float
 
 
 def reference(plan: BenchPlan, omega0: float, f_d: float) -> dict[str, Any]:
-    """Tight solutions at the three reference grids and their Richardson limits."""
+    """Tight solutions at the three reference grids and their Richardson limits.
+
+    Parameters
+    ----------
+    plan : BenchPlan
+        The plan: beam, reference grids `ref_N`, reference tolerance `ref_tol`.
+    omega0 : float
+        Mean angular velocity Omega_0 [rad/s] (velocity amplitude 1 rad/s).
+    f_d : float
+        Drive frequency [Hz].
+
+    Returns
+    -------
+    dict
+        rms_N<N> and delta_N<N> at each grid; rms and delta_rms, the limit of the two finest;
+        reference_rel_change against the limit of the two coarsest and reference_digits; seconds.
+
+    Raises
+    ------
+    RuntimeError
+        If a reference run finds no steady state.
+    """
     tight = dict(rtol=plan.ref_tol, ss_tol=10 * plan.ref_tol, tail_tol=plan.ref_tol)
     out: dict[str, Any] = {"seconds": 0.0}
     for N in plan.ref_N:
@@ -141,7 +166,28 @@ def _errors(row: dict[str, Any], rms_ref: float, delta_ref: float) -> tuple[floa
 def run_benchmark(
     plan: BenchPlan, progress: Callable[[str], None] | None = None
 ) -> tuple[pd.DataFrame, pd.DataFrame]:
-    """All runs of the plan; returns (runs, references), one row per run / per scene."""
+    """All runs of the plan, after one untimed warm-up run of each kind.
+
+    Parameters
+    ----------
+    plan : BenchPlan
+        What to run.
+    progress : callable or None
+        Called with one line per run (e.g. printed to stderr); None: silent.
+
+    Returns
+    -------
+    runs : pandas.DataFrame
+        One row per run: scene, study, curve, N, tol, seconds, rms, errors against the same-N
+        and the converged reference, and the solver's counts.
+    references : pandas.DataFrame
+        One row per scene (`reference`).
+
+    Raises
+    ------
+    RuntimeError
+        If a reference run finds no steady state.
+    """
     say = progress or (lambda _msg: None)
     # warm-up: imports, caches and first-call costs stay out of the first timed run
     _run(_scene(plan, 5.0, 2.0, Numerics(N=10)))
@@ -187,7 +233,24 @@ def run_benchmark(
 
 
 def surrogate_row(plan: BenchPlan, omega0: float, f_d: float, ref: dict) -> dict[str, Any]:
-    """The one-mode surrogate: time and error against the converged reference."""
+    """The one-mode surrogate: time and error against the converged reference.
+
+    Parameters
+    ----------
+    plan : BenchPlan
+        The plan (its beam).
+    omega0 : float
+        Mean angular velocity Omega_0 [rad/s] (velocity amplitude 1 rad/s).
+    f_d : float
+        Drive frequency [Hz].
+    ref : dict
+        The scene's reference (`reference`).
+
+    Returns
+    -------
+    dict
+        The surrogate's row of the runs table (study and curve "surrogate").
+    """
     t0 = time.perf_counter()
     dl = Dimensionless.from_physical(plan.beam, Drive(omega0, 1.0, f_d), Effects())
     s = steady_rms(dl)

@@ -28,7 +28,13 @@ WORKFLOW_NUMERICS = replace(Numerics(), N=40, extrapolate=True, rtol=1e-5)
 
 @contextmanager
 def timed_floquet() -> Iterator[list[float]]:
-    """Collect the CPU seconds of every `floquet.orbit_floquet` call made inside the block."""
+    """Collect the CPU seconds of every `floquet.orbit_floquet` call made inside the block.
+
+    Yields
+    ------
+    list of float
+        CPU seconds of each call, filled as the block runs.
+    """
     spent: list[float] = []
     original = floquet.orbit_floquet
 
@@ -47,9 +53,27 @@ def timed_floquet() -> Iterator[list[float]]:
 
 
 def stability_costs(
-    numerics: Numerics = WORKFLOW_NUMERICS, scenes=SCENES, repeats: int = 3
+    numerics: Numerics = WORKFLOW_NUMERICS,
+    scenes: tuple[tuple[str, float, float], ...] = SCENES,
+    repeats: int = 3,
 ) -> pd.DataFrame:
-    """One row per scene: the point's CPU seconds, its Floquet passes' and their share."""
+    """One row per scene: the point's CPU seconds, its Floquet passes' and their share.
+
+    Parameters
+    ----------
+    numerics : Numerics
+        Numerics of every point (default: the workflow's).
+    scenes : sequence of (str, float, float)
+        (label, Omega_0 [rad/s], f_d [Hz]) on the Table 1 beam (default: the benchmark's).
+    repeats : int
+        Runs per scene; the fastest counts.
+
+    Returns
+    -------
+    pandas.DataFrame
+        scene, omega0, f_d, cpu_point and cpu_floquet [s], floquet_passes, share (of the
+        point's CPU time), floquet_max and rms.
+    """
     rows = []
     for label, omega0, f_d in scenes:
         scene = Scene(Beam(), Drive(omega0=omega0, f_d=f_d), Effects(), numerics)

@@ -14,7 +14,13 @@ HELP = "work-precision benchmark (error against wall time)"
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
-    """The flags of `rotbeam bench`."""
+    """The flags of `rotbeam bench`.
+
+    Parameters
+    ----------
+    p : argparse.ArgumentParser
+        The command's parser; the flags are added to it.
+    """
     p.add_argument("--quick", action="store_true", help="the small plan (2 scenes, 2 tolerances)")
     p.add_argument("--config", help="YAML mapping of BenchPlan fields (see rotbeam/bench/plan.py)")
     p.add_argument("--out", default="results/performance/work_precision",
@@ -23,7 +29,24 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    """Parse the plan, run it, write the outputs."""
+    """Parse the plan, run it, write the outputs (progress on stderr).
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed flags (`add_arguments`).
+
+    Returns
+    -------
+    int
+        Exit status 0.
+
+    Raises
+    ------
+    RotbeamInputError
+        If --config cannot be read or holds no mapping, --max-seconds is not > 0, or the plan is
+        out of range.
+    """
     from ..bench.plan import plan_from_dict
     from ..bench.report import write_outputs
     from ..bench.run import run_benchmark

@@ -13,7 +13,13 @@ HELP = ("f_d*: the drive frequency where Delta RMS reaches the threshold at one 
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
-    """The flags of `rotbeam critical`."""
+    """The flags of `rotbeam critical`.
+
+    Parameters
+    ----------
+    p : argparse.ArgumentParser
+        The command's parser; the flags are added to it.
+    """
     options.add_scene_flags(p, drive_frequency=False)
     options.add_field(p, "verdict", "threshold")
     options.add_field(p, "critical", "ftol")
@@ -21,7 +27,24 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    """Parse, search, print."""
+    """Parse, search, print: f_d* of the full model, c = f_d* / f_0, f_0 and the search's cost,
+    with the chosen effects and the uncertainty's spread where asked for.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed flags (`add_arguments`).
+
+    Returns
+    -------
+    int
+        Exit status: 0 where f_d* was found, 1 where not (the message says why).
+
+    Raises
+    ------
+    RotbeamInputError
+        If a flag, the scene file or the uncertainty is not allowed, or omega0 is missing.
+    """
     threshold = options.option(args, "verdict", "threshold")
     ftol = options.option(args, "critical", "ftol")
     scene, tol, inputs = options.scene_request(args, needs=("omega0",))

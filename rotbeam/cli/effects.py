@@ -11,12 +11,35 @@ HELP = ("each effect's share of RMS(y_m) and of Delta RMS at one scene, by switc
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
-    """The flags of `rotbeam effects`."""
+    """The flags of `rotbeam effects`.
+
+    Parameters
+    ----------
+    p : argparse.ArgumentParser
+        The command's parser; the flags are added to it.
+    """
     options.add_scene_flags(p, drive_frequency=True)
 
 
 def run(args: argparse.Namespace) -> int:
-    """Parse, budget, print."""
+    """Parse, budget, print: each effect's share of RMS(y_m) and of Delta RMS, how it was
+    measured and its cost, and the sequential shares.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed flags (`add_arguments`).
+
+    Returns
+    -------
+    int
+        Exit status: 0, or 1 where the scene has no steady state (or no deflection) to share.
+
+    Raises
+    ------
+    RotbeamInputError
+        If a flag or the scene file is not allowed, or omega0 or f_d is missing.
+    """
     scene, _, _ = options.scene_request(args)
 
     from ..analysis.effect_budget import effect_budget

@@ -14,7 +14,13 @@ HELP = ("beam parameters (default E, gamma) from a measured resonance curve (col
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
-    """The flags of `rotbeam identify`."""
+    """The flags of `rotbeam identify`.
+
+    Parameters
+    ----------
+    p : argparse.ArgumentParser
+        The command's parser; the flags are added to it.
+    """
     p.add_argument("--measured", required=True, help="CSV with columns f_d, rms[, rms_std]")
     p.add_argument("--omega0", type=options.finite, required=True,
                    help="Omega_0 of the measurement [rad/s]")  # fmt: skip
@@ -29,7 +35,26 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    """Parse, fit, print."""
+    """Parse, fit, print: each fitted value with its standard error, 95 % interval and start,
+    the residual, the cost; the figure with --plot.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed flags (`add_arguments`).
+
+    Returns
+    -------
+    int
+        Exit status: 0 where the least squares converged, 1 where not.
+
+    Raises
+    ------
+    RotbeamInputError
+        If the file, the scene, --fit, --N, --amplitude or --plot's suffix is not allowed.
+    FitRejected
+        If the fit cannot be carried out (a run without a steady state, a beam out of range).
+    """
     from ..analysis.identify import FIT_NUMERICS, IdentifyFailed, identify, parse_names
     from ..analysis.measurements import load_resonance
     from ..config.scenefile import load_scene_file

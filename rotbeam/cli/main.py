@@ -49,7 +49,26 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def main(argv: list[str] | None = None) -> int:
-    """Run one command; its exit status (0 done, 1 no answer or a rejected fit, 2 bad input)."""
+    """Run one command; its exit status (0 done, 1 no answer or a rejected fit, 2 bad input).
+
+    Bad input gives one line on stderr naming the flag, never a traceback.
+
+    Parameters
+    ----------
+    argv : list of str or None
+        The arguments after `rotbeam`; None: ``sys.argv[1:]``.
+
+    Returns
+    -------
+    int
+        0 done, 1 no answer or a rejected fit, 2 bad input, 130 interrupted.
+
+    Raises
+    ------
+    SystemExit
+        With status 2 for a flag argparse rejects (one line on stderr), 0 after --help or
+        --version.
+    """
     args = build_parser().parse_args(argv)
     run = importlib.import_module(f".{COMMANDS[args.command]}", __package__).run
     from .damping import FitRejected

@@ -11,7 +11,13 @@ HELP = "natural frequencies under steady rotation"
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
-    """The flags of `rotbeam modes`."""
+    """The flags of `rotbeam modes`.
+
+    Parameters
+    ----------
+    p : argparse.ArgumentParser
+        The command's parser; the flags are added to it.
+    """
     p.add_argument("--scene", help="YAML scene file whose beam section is the beam")
     options.add_section(p, "beam")
     options.add_field(p, "modes", "omega")
@@ -27,7 +33,25 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    """Parse, solve the eigenproblem, print."""
+    """Parse, solve the eigenproblem, print the first frequencies [Hz] (or, with
+    --dimensionless, in units of 1/T).
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed flags (`add_arguments`).
+
+    Returns
+    -------
+    int
+        Exit status 0.
+
+    Raises
+    ------
+    RotbeamInputError
+        If a flag or the scene file is not allowed, --k is not below N, or the rotation is
+        beyond the model's range of C.
+    """
     from ..model.modes import dimensionless_frequencies, modes
     from ..model.params import BETA1, C_MAX_LIMIT
 

@@ -33,13 +33,40 @@ class Parser(argparse.ArgumentParser):
         )
 
     def error(self, message: str) -> None:
+        """Exit with status 2 and one line on stderr (pointing to --help for unknown flags).
+
+        Parameters
+        ----------
+        message : str
+            argparse's message.
+
+        Raises
+        ------
+        SystemExit
+            Always, with status EXIT_USAGE.
+        """
         if message.startswith("unrecognized arguments"):
             message += f"; allowed: see `{self.prog} --help`"
         self.exit(EXIT_USAGE, f"rotbeam: error: {message}\n")
 
 
 def finite(text: str) -> float:
-    """A finite real number from a flag's text."""
+    """A finite real number from a flag's text (an argparse `type`).
+
+    Parameters
+    ----------
+    text : str
+        The flag's value.
+
+    Returns
+    -------
+    float
+
+    Raises
+    ------
+    argparse.ArgumentTypeError
+        If the text is not a number, or not finite.
+    """
     try:
         v = float(text)
     except ValueError:
@@ -50,7 +77,22 @@ def finite(text: str) -> float:
 
 
 def integer(text: str) -> int:
-    """An integer from a flag's text."""
+    """An integer from a flag's text (an argparse `type`).
+
+    Parameters
+    ----------
+    text : str
+        The flag's value.
+
+    Returns
+    -------
+    int
+
+    Raises
+    ------
+    argparse.ArgumentTypeError
+        If the text is not an integer.
+    """
     try:
         return int(text)
     except ValueError:
@@ -58,18 +100,56 @@ def integer(text: str) -> int:
 
 
 def flag_name(section: str, name: str) -> str:
-    """The flag of a registry field: `--` and its name with hyphens, or FLAG_NAMES'."""
+    """The flag of a registry field: `--` and its name with hyphens, or FLAG_NAMES'.
+
+    Parameters
+    ----------
+    section : str
+        The registry section (beam, drive, effects, numerics, ...).
+    name : str
+        The field's name.
+
+    Returns
+    -------
+    str
+        E.g. "--omega0", "--fd".
+    """
     return FLAG_NAMES.get((section, name), "--" + name.replace("_", "-"))
 
 
 def dest(section: str, name: str) -> str:
-    """Where argparse keeps a registry field's value."""
+    """Where argparse keeps a registry field's value.
+
+    Parameters
+    ----------
+    section : str
+        The registry section.
+    name : str
+        The field's name.
+
+    Returns
+    -------
+    str
+        The attribute of the parsed namespace, "<section>__<name>".
+    """
     return f"{section}__{name}"
 
 
 def add_field(p: argparse.ArgumentParser, section: str, name: str, **kwargs: Any) -> None:
     """One flag for the registry field section.name: its type, help (unit, default, range);
-    default None (unset: the scene file's value or the registry's default)."""
+    default None (unset: the scene file's value or the registry's default).
+
+    Parameters
+    ----------
+    p : argparse.ArgumentParser
+        The parser (or argument group) the flag is added to.
+    section : str
+        The registry section.
+    name : str
+        The field's name.
+    **kwargs
+        Passed to `add_argument`.
+    """
     entry = param(section, name)
     flag = flag_name(section, name)
     common = {"dest": dest(section, name), "default": None, "help": help_text(section, name)}
@@ -84,7 +164,17 @@ def add_field(p: argparse.ArgumentParser, section: str, name: str, **kwargs: Any
 
 
 def add_section(p: argparse.ArgumentParser, section: str, skip: tuple[str, ...] = ()) -> None:
-    """A flag for every field of a scene section but `skip`."""
+    """A flag for every field of a scene section but `skip`, in a group of its own.
+
+    Parameters
+    ----------
+    p : argparse.ArgumentParser
+        The command's parser.
+    section : str
+        The scene section (beam, drive, numerics).
+    skip : tuple of str
+        Fields that get no flag.
+    """
     group = p.add_argument_group(f"{section} (scene section; a --scene file's values unless set)")
     for name in SECTIONS[section]:
         if name not in skip:
@@ -92,7 +182,15 @@ def add_section(p: argparse.ArgumentParser, section: str, skip: tuple[str, ...] 
 
 
 def add_scene_flags(p: argparse.ArgumentParser, drive_frequency: bool = True) -> None:
-    """--scene, every beam, drive and numerics field, --effects and --json."""
+    """--scene, every beam, drive and numerics field, --effects and --json.
+
+    Parameters
+    ----------
+    p : argparse.ArgumentParser
+        The command's parser.
+    drive_frequency : bool
+        Whether the command takes --fd (`rotbeam critical` does not: it finds f_d*).
+    """
     p.add_argument("--scene", help="YAML scene file (sections beam, drive, effects, numerics)")
     for section in ("beam", "drive", "numerics"):
         add_section(p, section, skip=() if drive_frequency or section != "drive" else ("f_d",))
@@ -104,19 +202,61 @@ def add_scene_flags(p: argparse.ArgumentParser, drive_frequency: bool = True) ->
 
 
 def given(args: argparse.Namespace) -> dict[str, str]:
-    """`section.name` -> flag of every registry field set on the command line."""
+    """`section.name` -> flag of every registry field set on the command line.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed flags.
+
+    Returns
+    -------
+    dict
+        E.g. {"drive.omega0": "--omega0"}.
+    """
     return {f"{s}.{n}": flag_name(s, n) for s, n in getattr(args, "_fields", [])
             if getattr(args, dest(s, n)) is not None}  # fmt: skip
 
 
 def option(args: argparse.Namespace, section: str, name: str) -> Any:
-    """A command option's value, checked against the registry (its default when unset)."""
+    """A command option's value, checked against the registry (its default when unset).
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed flags.
+    section : str
+        The registry section (e.g. verdict, critical, response).
+    name : str
+        The field's name.
+
+    Returns
+    -------
+    object
+        The checked value, in the field's unit.
+
+    Raises
+    ------
+    RotbeamInputError
+        If the value is outside the field's range.
+    """
     value = getattr(args, dest(section, name))
     return check_value(section, name, param(section, name).default if value is None else value)
 
 
 def scene_values(args: argparse.Namespace) -> dict[str, dict[str, Any]]:
-    """The scene fields set by flags, by section."""
+    """The scene fields set by flags, by section.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed flags.
+
+    Returns
+    -------
+    dict
+        Section -> {field: value}, only fields whose flag was given.
+    """
     out: dict[str, dict[str, Any]] = {}
     for s, n in getattr(args, "_fields", []):
         value = getattr(args, dest(s, n))
@@ -126,7 +266,20 @@ def scene_values(args: argparse.Namespace) -> dict[str, dict[str, Any]]:
 
 
 def named_flag(message: str, args: argparse.Namespace) -> str:
-    """`message` prefixed with `argument --flag:` when it is about a field a flag set."""
+    """`message` prefixed with `argument --flag:` when it is about a field a flag set.
+
+    Parameters
+    ----------
+    message : str
+        A `RotbeamInputError`'s message, starting with the key it is about.
+    args : argparse.Namespace
+        The parsed flags.
+
+    Returns
+    -------
+    str
+        The message, naming the flag where one set the value.
+    """
     for key, flag in given(args).items():
         if message.startswith(key) and not message[len(key) : len(key) + 1].isalnum():
             return f"argument {flag}: {message}"
@@ -153,6 +306,12 @@ def scene_request(args: argparse.Namespace, needs: tuple[str, ...] = ("omega0", 
         TOL of `effects: auto` (flag or file; an explicit --effects list wins), None without.
     inputs : dict
         Uncertain inputs, name -> (mean, sd).
+
+    Raises
+    ------
+    RotbeamInputError
+        If the scene file, a flag or the uncertainty is not allowed, or a needed drive field is
+        missing.
     """
     from ..config.scenefile import auto_tol, load_scene_file, scene_sections, split_auto
     from ..model.params import Effects
@@ -190,7 +349,13 @@ def scene_request(args: argparse.Namespace, needs: tuple[str, ...] = ("omega0", 
 
 
 def add_uncertainty_flags(p: argparse.ArgumentParser) -> None:
-    """--uncertainty, --uq-method, --uq-samples."""
+    """--uncertainty, --uq-method, --uq-samples.
+
+    Parameters
+    ----------
+    p : argparse.ArgumentParser
+        The command's parser.
+    """
     p.add_argument("--uncertainty", help="inputs' normal spreads, e.g. "
                    "\"gamma=0.039+-0.008,E=1.22e6+-0.05e6\" (beam fields, omega0, amplitude; "
                    "adds to a scene file's uncertainty section)")  # fmt: skip
@@ -202,7 +367,18 @@ def add_uncertainty_flags(p: argparse.ArgumentParser) -> None:
 
 
 def check_plot_path(path: str | None) -> None:
-    """A --plot path with a suffix matplotlib writes (.png, .pdf, .svg), before any work."""
+    """Check a --plot path's suffix (.png, .pdf, .svg) before any work.
+
+    Parameters
+    ----------
+    path : str or None
+        The --plot value; None or empty: nothing to check.
+
+    Raises
+    ------
+    RotbeamInputError
+        If the suffix is not one of PLOT_SUFFIXES.
+    """
     if path:
         from ..config.checks import check_plot_suffix
 

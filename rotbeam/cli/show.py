@@ -9,23 +9,53 @@ WIDTH = 16
 
 
 def line(name: str, text: str) -> None:
-    """One `name value` line, names aligned."""
+    """Print one `name value` line, names aligned.
+
+    Parameters
+    ----------
+    name : str
+        The name, padded to WIDTH characters.
+    text : str
+        The value as text.
+    """
     print(f"{name:{WIDTH}s} {text}")
 
 
 def values(out: dict[str, Any], keys: tuple[str, ...], fmt: str = ".6g") -> None:
-    """`line` for each key of `out`, numbers formatted with `fmt`."""
+    """Print a `line` for each key of `out`, numbers formatted with `fmt`.
+
+    Parameters
+    ----------
+    out : dict
+        The command's results.
+    keys : tuple of str
+        The keys to print, in order.
+    fmt : str
+        Format spec of the values.
+    """
     for key in keys:
         line(key, format(out[key], fmt))
 
 
 def as_json(out: dict[str, Any]) -> None:
-    """One JSON object on stdout (NumPy numbers as floats)."""
+    """Print one JSON object on stdout (NumPy numbers as floats).
+
+    Parameters
+    ----------
+    out : dict
+        The command's results.
+    """
     print(json.dumps(out, default=float))
 
 
 def auto_effects(auto: dict[str, Any]) -> None:
-    """What `effects: auto` kept and dropped, and what the budget cost."""
+    """Print what `effects: auto` kept and dropped, and what the budget cost.
+
+    Parameters
+    ----------
+    auto : dict
+        `auto_dict`'s mapping.
+    """
     dropped = ",".join(auto["dropped"]) or "none"
     line("effects auto", f"kept {','.join(auto['kept'])}; dropped {dropped} (worth "
          f"{auto['dropped_share']:.2g} of RMS at f_d = {auto['budget_f_d']:.4g} Hz; the budget "
@@ -33,7 +63,13 @@ def auto_effects(auto: dict[str, Any]) -> None:
 
 
 def uncertainty(prop: Any) -> None:
-    """Mean, sd and 95 % interval of each output, and P(quasi-static)."""
+    """Print the mean, sd and 95 % interval of each output, and P(quasi-static).
+
+    Parameters
+    ----------
+    prop : Propagated
+        The propagated uncertainty (`rotbeam.analysis.uncertainty`).
+    """
     spread = ", ".join(f"{k} = {m:g} +- {s:g}" for k, (m, s) in prop.inputs.items())
     failed = f", {prop.failed} failed" if prop.failed else ""
     line("uncertainty", f"{spread} (normal; {prop.method}, {prop.runs} runs, "
@@ -46,5 +82,20 @@ def uncertainty(prop: Any) -> None:
 
 
 def auto_dict(auto: Any, budget: Any, f_d: float) -> dict[str, Any]:
-    """`effects_auto` of the JSON output: the choice, the budget's cost and where it ran."""
+    """`effects_auto` of the JSON output: the choice, the budget's cost and where it ran.
+
+    Parameters
+    ----------
+    auto : AutoEffects
+        The choice (`auto_effects`).
+    budget : EffectBudget
+        The budget it rests on.
+    f_d : float
+        The drive frequency the budget ran at [Hz].
+
+    Returns
+    -------
+    dict
+        `AutoEffects.as_dict` with budget_seconds [s] and budget_f_d [Hz].
+    """
     return auto.as_dict() | {"budget_seconds": budget.total_seconds, "budget_f_d": f_d}

@@ -13,7 +13,13 @@ HELP = "dynamic and quasi-static response of one scene, and the verdict"
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
-    """The flags of `rotbeam simulate`."""
+    """The flags of `rotbeam simulate`.
+
+    Parameters
+    ----------
+    p : argparse.ArgumentParser
+        The command's parser; the flags are added to it.
+    """
     options.add_scene_flags(p, drive_frequency=True)
     options.add_field(p, "verdict", "threshold")
     options.add_field(p, "response", "periods")
@@ -27,7 +33,25 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    """Parse, simulate, judge, print."""
+    """Parse, simulate, judge, print: RMS of both models, Delta RMS, the verdict and its cost,
+    the response's class, and the time series and figure where asked for.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed flags (`add_arguments`).
+
+    Returns
+    -------
+    int
+        Exit status: 0 where the dynamic run reached a steady state, 1 where not.
+
+    Raises
+    ------
+    RotbeamInputError
+        If a flag, the scene file or the uncertainty is not allowed, omega0 or f_d is missing,
+        or --out or --plot has a suffix that is not written.
+    """
     threshold = options.option(args, "verdict", "threshold")
     periods, response_N = options.option(args, "response", "periods"), options.option(
         args, "response", "N")  # fmt: skip

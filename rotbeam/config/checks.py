@@ -12,7 +12,25 @@ from .errors import RotbeamInputError
 
 
 def check_finite(name: str, value: object) -> float:
-    """A finite real number (bools are not numbers here)."""
+    """A finite real number (bools are not numbers here).
+
+    Parameters
+    ----------
+    name : str
+        The key, for the message.
+    value : object
+        The value to check.
+
+    Returns
+    -------
+    float
+        The value as a float.
+
+    Raises
+    ------
+    RotbeamInputError
+        If the value is not a real number (or is a bool), or is not finite.
+    """
     if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
         raise RotbeamInputError(f"{name} must be a number, got {value!r} ({type(value).__name__})")
     value = float(value)
@@ -22,6 +40,25 @@ def check_finite(name: str, value: object) -> float:
 
 
 def check_positive(name: str, value: object) -> float:
+    """A finite real number > 0.
+
+    Parameters
+    ----------
+    name : str
+        The key, for the message.
+    value : object
+        The value to check.
+
+    Returns
+    -------
+    float
+        The value as a float.
+
+    Raises
+    ------
+    RotbeamInputError
+        If the value is not a finite real number, or is <= 0.
+    """
     value = check_finite(name, value)
     if value <= 0:
         raise RotbeamInputError(f"{name} must be > 0, got {value!r}")
@@ -29,6 +66,25 @@ def check_positive(name: str, value: object) -> float:
 
 
 def check_nonnegative(name: str, value: object) -> float:
+    """A finite real number >= 0.
+
+    Parameters
+    ----------
+    name : str
+        The key, for the message.
+    value : object
+        The value to check.
+
+    Returns
+    -------
+    float
+        The value as a float.
+
+    Raises
+    ------
+    RotbeamInputError
+        If the value is not a finite real number, or is < 0.
+    """
     value = check_finite(name, value)
     if value < 0:
         raise RotbeamInputError(f"{name} must be >= 0, got {value!r}")
@@ -36,7 +92,25 @@ def check_nonnegative(name: str, value: object) -> float:
 
 
 def check_threshold(threshold: object, name: str = "threshold") -> float:
-    """A Delta RMS threshold: a number in (0, 1)."""
+    """A Delta RMS threshold: a number in (0, 1).
+
+    Parameters
+    ----------
+    threshold : object
+        The value to check (dimensionless).
+    name : str
+        The key, for the message.
+
+    Returns
+    -------
+    float
+        The threshold as a float.
+
+    Raises
+    ------
+    RotbeamInputError
+        If the value is not a number (or is a bool), or is not in (0, 1).
+    """
     if isinstance(threshold, bool) or not isinstance(threshold, (int, float, np.floating)):
         raise RotbeamInputError(f"{name} must be a number in (0, 1), got {threshold!r}")
     t = float(threshold)
@@ -60,6 +134,12 @@ def check_plot_suffix(path: str | Path) -> Path:
     Returns
     -------
     Path
+        The path as a Path.
+
+    Raises
+    ------
+    RotbeamInputError
+        If the suffix is not one of PLOT_SUFFIXES.
     """
     path = Path(path)
     if path.suffix not in PLOT_SUFFIXES:

@@ -7,16 +7,38 @@ follow it.
 
 from __future__ import annotations
 
+from collections.abc import Iterator
 from typing import Any
 
 
 def g(x: float) -> str:
-    """A number as %g (1e-05, 0.155, 787)."""
+    """A number as %g (1e-05, 0.155, 787).
+
+    Parameters
+    ----------
+    x : float
+        The number.
+
+    Returns
+    -------
+    str
+    """
     return format(float(x), "g")
 
 
 def key_name(path: Any) -> str:
-    """Dotted key of a config path: ('fig4', 'omega0', 1) -> 'fig4.omega0[1]'."""
+    """Dotted key of a config path: ('fig4', 'omega0', 1) -> 'fig4.omega0[1]'.
+
+    Parameters
+    ----------
+    path : iterable of str or int
+        Keys and list indices from the top of the config.
+
+    Returns
+    -------
+    str
+        The key as a user writes it; "the config" for the empty path.
+    """
     out = ""
     for p in path:
         out += f"[{p}]" if isinstance(p, int) else (f".{p}" if out else str(p))
@@ -24,7 +46,19 @@ def key_name(path: Any) -> str:
 
 
 def show(value: Any, width: int = 60) -> str:
-    """repr(value), cut to `width` characters (for one-line error messages)."""
+    """repr(value), cut to `width` characters (for one-line error messages).
+
+    Parameters
+    ----------
+    value : object
+        The value.
+    width : int
+        Most characters; a longer repr ends in "...".
+
+    Returns
+    -------
+    str
+    """
     text = repr(value)
     return text if len(text) <= width else text[: width - 3] + "..."
 
@@ -40,7 +74,20 @@ def _resolve(schema: dict, root: dict) -> dict:
 
 
 def subschema(root: dict, path: Any) -> dict | None:
-    """The schema of the value at `path` (None where the schema says nothing)."""
+    """The schema of the value at `path` (None where the schema says nothing).
+
+    Parameters
+    ----------
+    root : dict
+        The whole config schema (local `$ref`s are followed).
+    path : iterable of str or int
+        Keys and list indices from the top of the config.
+
+    Returns
+    -------
+    dict or None
+        The sub-schema.
+    """
     node = _resolve(root, root)
     for p in path:
         if isinstance(p, int):
@@ -55,7 +102,19 @@ def subschema(root: dict, path: Any) -> dict | None:
 
 
 def describe_allowed(schema: dict | None, root: dict | None = None) -> str:
-    """What a JSON-schema node allows, in words: 'a finite number in (0, 1)'."""
+    """What a JSON-schema node allows, in words: 'a finite number in (0, 1)'.
+
+    Parameters
+    ----------
+    schema : dict or None
+        The node; None or empty: "a finite number".
+    root : dict or None
+        The whole schema, for `$ref`s.
+
+    Returns
+    -------
+    str
+    """
     if not schema:
         return "a finite number"
     s = _resolve(schema, root or {})
@@ -102,7 +161,20 @@ def describe_allowed(schema: dict | None, root: dict | None = None) -> str:
 
 
 def schema_error_message(error: Any, root: dict) -> str:
-    """One line naming key, value and what is allowed, from a jsonschema ValidationError."""
+    """One line naming key, value and what is allowed, from a jsonschema ValidationError.
+
+    Parameters
+    ----------
+    error : jsonschema.ValidationError
+        The error.
+    root : dict
+        The whole config schema.
+
+    Returns
+    -------
+    str
+        E.g. "beam.L = -1: must be a finite number > 0".
+    """
     path = list(error.absolute_path)
     kind, value = error.validator, error.instance
     schema = _resolve(error.schema, root)
@@ -125,8 +197,21 @@ def schema_error_message(error: Any, root: dict) -> str:
     return f"{key_name(path)} = {show(value)}: must be {describe_allowed(schema, root)}"
 
 
-def json_numbers(value: Any, path: tuple = ()):
-    """Every (path, number) of a nested config."""
+def json_numbers(value: Any, path: tuple = ()) -> Iterator[tuple[tuple, Any]]:
+    """Every (path, number) of a nested config.
+
+    Parameters
+    ----------
+    value : object
+        The config, or a part of it.
+    path : tuple
+        Where `value` sits in the whole config.
+
+    Yields
+    ------
+    tuple
+        (path, number) for each int or float leaf (bools excepted).
+    """
     if isinstance(value, dict):
         for k, v in value.items():
             yield from json_numbers(v, (*path, k))
@@ -139,7 +224,18 @@ def json_numbers(value: Any, path: tuple = ()):
 
 def coerce_numbers(value: Any) -> Any:
     """Numbers given as strings (``--config thresholds=[0.05,0.2]`` arrives as ['0.05', '0.2'])
-    become numbers; everything else is left for the schema to judge."""
+    become numbers; everything else is left for the schema to judge.
+
+    Parameters
+    ----------
+    value : object
+        The config, or a part of it.
+
+    Returns
+    -------
+    object
+        The same structure with numeric strings as int or float and "true"/"false" as bools.
+    """
     if isinstance(value, dict):
         return {k: coerce_numbers(v) for k, v in value.items()}
     if isinstance(value, list):
@@ -158,7 +254,20 @@ def coerce_numbers(value: Any) -> Any:
 
 def merge_config(base: dict[str, Any], override: dict[str, Any]) -> dict[str, Any]:
     """`override` merged over `base` key by key (lists replaced whole): what snakemake does with
-    `--configfile config/quick.yaml` over the Snakefile's config/config.yaml."""
+    `--configfile config/quick.yaml` over the Snakefile's config/config.yaml.
+
+    Parameters
+    ----------
+    base : dict
+        The config underneath.
+    override : dict
+        The config on top; its mappings merge, its other values replace.
+
+    Returns
+    -------
+    dict
+        A new mapping; neither argument is changed.
+    """
     out = dict(base)
     for key, value in override.items():
         if isinstance(value, dict) and isinstance(out.get(key), dict):

@@ -1,1 +1,2 @@
-"""Output: one plotting style, the paper's figures and tables, and one atomic writer."""
+"""Output: one plotting style, one atomic writer, the workflow jobs' log, and the figures of the
+commands and of the nonlinear target (the paper's own figures are in `rotbeam.paper`)."""

@@ -4,6 +4,7 @@ fitted model and the scene's (Table 1) model."""
 from __future__ import annotations
 
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 import pandas as pd
@@ -13,9 +14,24 @@ from ..analysis.measurements import ResonanceCurve, Ringdown
 from ..analysis.ringdown import RingdownFit
 from .style import DYN, GREY, QS, figure, save
 
+if TYPE_CHECKING:
+    from ..runs.scene import Scene
+    from ..solve.numerics import Numerics
+
 
 def plot_ringdown(data: Ringdown, fit: RingdownFit, path: str | Path) -> None:
-    """The record, the fitted damped oscillation and its envelope; residuals below."""
+    """Draw a ring-down: the record, the fitted damped oscillation and its envelope; residuals
+    below (`rotbeam damping --plot`).
+
+    Parameters
+    ----------
+    data : Ringdown
+        The record: t [s], y (any unit).
+    fit : RingdownFit
+        Its fit (`fit_ringdown`).
+    path : str or Path
+        The figure's file (.png, .pdf or .svg), written atomically.
+    """
     t0 = float(data.t[0])
     fig, (a, b) = figure(2, 1, width=7.0, height=4.8, sharex=True,
                          gridspec_kw={"height_ratios": [3, 1]})  # fmt: skip
@@ -45,7 +61,24 @@ def plot_ringdown(data: Ringdown, fit: RingdownFit, path: str | Path) -> None:
 def plot_identification(curve: ResonanceCurve, fit: Identification, fitted: pd.DataFrame,
                         reference: pd.DataFrame, reference_label: str,
                         path: str | Path) -> None:  # fmt: skip
-    """Data (with rms_std bars if given), the fitted model's curve, the scene beam's curve."""
+    """Draw a resonance curve: data (with rms_std bars if given), the fitted model's curve and
+    the scene beam's curve, with the fitted values and their 95 % intervals.
+
+    Parameters
+    ----------
+    curve : ResonanceCurve
+        The measurement: f_d [Hz], RMS(y_m) and optionally its std.
+    fit : Identification
+        The fit (`identify`).
+    fitted : pandas.DataFrame
+        The fitted beam's simulated curve: columns f_d [Hz], rms_dynamic, N.
+    reference : pandas.DataFrame
+        The scene beam's simulated curve: columns f_d [Hz], rms_dynamic.
+    reference_label : str
+        The legend's name for the scene beam's curve.
+    path : str or Path
+        The figure's file (.png, .pdf or .svg), written atomically.
+    """
     fig, a = figure(width=7.0, height=4.6)
     if curve.rms_std is not None:
         a.errorbar(curve.f_d, curve.rms, yerr=curve.rms_std, fmt="o", color="k", ms=4,
@@ -70,10 +103,29 @@ def plot_identification(curve: ResonanceCurve, fit: Identification, fitted: pd.D
     save(fig, path)
 
 
-def plot_identification_run(curve: ResonanceCurve, fit: Identification, scene, omega0: float,
-                            amplitude: float, numerics, path: str | Path) -> None:  # fmt: skip
+def plot_identification_run(curve: ResonanceCurve, fit: Identification, scene: Scene,
+                            omega0: float, amplitude: float, numerics: Numerics,
+                            path: str | Path) -> None:  # fmt: skip
     """`plot_identification` with the fitted beam's and the scene beam's curves simulated on 41
-    drive frequencies spanning the data (5 % beyond each end)."""
+    drive frequencies spanning the data (5 % beyond each end): 82 more runs of the full model.
+
+    Parameters
+    ----------
+    curve : ResonanceCurve
+        The measurement: f_d [Hz], RMS(y_m) and optionally its std.
+    fit : Identification
+        The fit (`identify`); its beam is simulated.
+    scene : Scene
+        The scene whose beam is drawn beside the fit, and whose effects both runs use.
+    omega0 : float
+        Mean angular velocity of the measurement, Omega_0 [rad/s].
+    amplitude : float
+        Velocity amplitude a of the drive [rad/s].
+    numerics : Numerics
+        Numerics of the runs (the fit's).
+    path : str or Path
+        The figure's file (.png, .pdf or .svg), written atomically.
+    """
     import numpy as np
 
     from ..model.params import Beam

@@ -17,13 +17,32 @@ import pandas as pd
 
 def temporary_name(path: Path) -> Path:
     """The hidden name `path` is written under first: same folder (so the rename is atomic),
-    the process id (two writers never share it), ending in `.part` (a leftover says what it is)."""
+    the process id (two writers never share it), ending in `.part` (a leftover says what it is).
+
+    Parameters
+    ----------
+    path : Path
+        The final file.
+
+    Returns
+    -------
+    Path
+        ``.<name>.<pid>.part`` beside it.
+    """
     return path.with_name(f".{path.name}.{os.getpid()}.part")
 
 
 def atomic_write(path: str | Path, write: Callable[[Path], object]) -> None:
     """write(tmp) to `temporary_name(path)`, then rename it onto `path`: a killed job leaves no
-    file at `path` that looks complete.  The temporary file is removed if writing fails."""
+    file at `path` that looks complete.  The temporary file is removed if writing fails.
+
+    Parameters
+    ----------
+    path : str or Path
+        The final file; its folder is created if missing.
+    write : callable
+        Writes the content to the path it is given (the temporary file).
+    """
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     tmp = temporary_name(path)
@@ -35,19 +54,59 @@ def atomic_write(path: str | Path, write: Callable[[Path], object]) -> None:
 
 
 def write_csv(df: pd.DataFrame, path: str | Path) -> None:
+    """Write a table as CSV (no index column), atomically.
+
+    Parameters
+    ----------
+    df : pandas.DataFrame
+        The table.
+    path : str or Path
+        The CSV file.
+    """
     atomic_write(path, lambda tmp: df.to_csv(tmp, index=False))
 
 
 def write_text(text: str, path: str | Path) -> None:
+    """Write text to a file, atomically.
+
+    Parameters
+    ----------
+    text : str
+        The content.
+    path : str or Path
+        The file.
+    """
     atomic_write(path, lambda tmp: tmp.write_text(text))
 
 
 def write_json(data: Any, path: str | Path) -> None:
+    """Write data as indented JSON (NumPy numbers as floats), atomically.
+
+    Parameters
+    ----------
+    data : object
+        Anything `json.dumps` takes, NumPy numbers included.
+    path : str or Path
+        The JSON file.
+    """
     write_text(json.dumps(data, indent=2, default=float) + "\n", path)
 
 
 def markdown_table(df: pd.DataFrame, floatfmt: str = ".4g") -> str:
-    """A GitHub-flavoured Markdown table (no tabulate dependency)."""
+    """A GitHub-flavoured Markdown table (no tabulate dependency).
+
+    Parameters
+    ----------
+    df : pandas.DataFrame
+        The table; its columns are the header.
+    floatfmt : str
+        Format spec of float cells.
+
+    Returns
+    -------
+    str
+        The table, one line per row, ending in a newline.
+    """
 
     def fmt(v: Any) -> str:
         if isinstance(v, float):
@@ -63,6 +122,19 @@ def markdown_table(df: pd.DataFrame, floatfmt: str = ".4g") -> str:
 def write_table(
     df: pd.DataFrame, csv_path: str | Path, md_path: str | Path, title: str = ""
 ) -> None:
+    """Write a table as CSV and as a Markdown file (under an optional title), atomically.
+
+    Parameters
+    ----------
+    df : pandas.DataFrame
+        The table.
+    csv_path : str or Path
+        The CSV file.
+    md_path : str or Path
+        The Markdown file.
+    title : str
+        A first line of the Markdown file (none if empty).
+    """
     write_csv(df, csv_path)
     text = (f"{title}\n\n" if title else "") + markdown_table(df)
     write_text(text, md_path)
@@ -77,6 +149,11 @@ def write_series(path: str | Path, series: dict[str, Any]) -> None:
         The file (.csv or .parquet).
     series : dict
         Column name -> values.
+
+    Raises
+    ------
+    RotbeamInputError
+        If `path` ends in .parquet and no Parquet engine is installed.
     """
     from ..config.errors import RotbeamInputError
 

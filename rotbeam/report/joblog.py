@@ -30,7 +30,24 @@ def job_log(
 ) -> Iterator[logging.Logger]:
     """Log the job to ``log_file`` (overwritten) and yield its logger.  On entry: the inputs; on
     exit: each output with its size (or `missing`), wall and CPU time; an exception is logged
-    with its traceback and raised again."""
+    with its traceback and raised again.
+
+    Parameters
+    ----------
+    log_file : str or PathLike
+        The rule's log file; its folder is created if missing.
+    inputs : iterable
+        The job's input files (``snakemake.input``).
+    outputs : iterable
+        The job's output files (``snakemake.output``).
+    job : str
+        The job's name in the log (``snakemake.rule``).
+
+    Yields
+    ------
+    logging.Logger
+        The job's logger, ``rotbeam.job.<job>``.
+    """
     inputs, outputs = [str(f) for f in inputs], [str(f) for f in outputs]
     Path(log_file).parent.mkdir(parents=True, exist_ok=True)
     handler = logging.FileHandler(log_file, mode="w", encoding="utf-8")

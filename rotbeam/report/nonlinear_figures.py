@@ -76,9 +76,25 @@ def _zoom(ax, rows: pd.DataFrame, folds: pd.DataFrame, a: float, margin: float =
     ax.set_title(f"a = {a:g} rad/s, near the losses of stability", loc="left")
 
 
-def branches_figure(rows: pd.DataFrame, folds: pd.DataFrame, omega0: float, pdf, png) -> None:
-    """One column per amplitude: both arms of the branch and both sweeps over the whole range
-    (top) and around the arms' losses of stability (bottom)."""
+def branches_figure(
+    rows: pd.DataFrame, folds: pd.DataFrame, omega0: float, pdf: str | Path, png: str | Path
+) -> None:
+    """Draw the branches of periodic orbits beside the sweeps: one column per amplitude, both
+    arms of the branch and both sweeps over the whole range (top) and around the arms' losses of
+    stability (bottom).
+
+    Parameters
+    ----------
+    rows : pandas.DataFrame
+        Branch and sweep points (`rotbeam.runs.nonlinear`): columns kind, arm, amplitude
+        [rad/s], f_d [Hz], rms_ym (RMS(y_m) / L), stable, bifurcation, status, index.
+    folds : pandas.DataFrame
+        Losses of stability per amplitude: columns amplitude [rad/s], f_loss [Hz].
+    omega0 : float
+        Mean angular velocity Omega_0 [rad/s], for the title.
+    pdf, png : str or Path
+        The figure's files, written atomically.
+    """
     amps = sorted(rows["amplitude"].unique())
     ncols = len(amps)
     # at least 7.2 in wide, and a two-column legend below three panels: the legend fits
@@ -111,11 +127,27 @@ def response_figure(
     running: np.ndarray,
     f_d: float,
     title: str,
-    png,
+    png: str | Path,
     late: float | None = None,
 ) -> None:
     """Stroboscopic section beside the running Lyapunov exponent (per second) against periods,
-    with the rate over the second half (`late`, what the class rests on) where given."""
+    with the rate over the second half (`late`, what the class rests on) where given.
+
+    Parameters
+    ----------
+    section : numpy.ndarray
+        Poincare section, one row (y_m / L, dy_m/dt / L [1/s]) per drive period.
+    running : numpy.ndarray
+        Running estimate of the largest Lyapunov exponent [1/s], one per period.
+    f_d : float
+        Drive frequency [Hz], for the axis label.
+    title : str
+        The figure's title.
+    png : str or Path
+        The figure's file, written atomically.
+    late : float or None
+        The exponent over the second half [1/s]; None: not drawn.
+    """
     fig, (a1, a2) = figure(1, 2, width=9.0, height=3.6)
     a1.plot(section[:, 0], section[:, 1], ".", color=DYN, ms=3)
     a1.set_xlabel("$y_m / L$ at $t = k / f_d$")

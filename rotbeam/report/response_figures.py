@@ -12,7 +12,18 @@ from .style import DYN, GREY, figure, save
 
 
 def plot_response(r: ResponseResult, scene: Scene, path: str | Path) -> None:
-    """Stroboscopic section (y_m, dy_m/dt at t = k / f_d) beside the spectrum of y_m."""
+    """Stroboscopic section (y_m, dy_m/dt at t = k / f_d) beside the spectrum of y_m, for a
+    scene without a stable periodic state (`rotbeam simulate --plot`).
+
+    Parameters
+    ----------
+    r : ResponseResult
+        The classified response (section, spectrum, class, Lyapunov exponent).
+    scene : Scene
+        The scene, for the drive frequency and the title.
+    path : str or Path
+        The figure's file (.png, .pdf or .svg), written atomically.
+    """
     drive = scene.drive
     fig, (a1, a2) = figure(1, 2, width=9.0, height=3.8)
     a1.plot(r.section[:, 0], r.section[:, 1], ".", color=DYN, ms=3)

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from pathlib import Path
+from typing import Any
 
 import matplotlib
 
@@ -34,17 +35,46 @@ GREY = "0.4"
 
 
 def apply_style() -> None:
+    """Set matplotlib's rcParams to rotbeam's one style (STYLE)."""
     plt.rcParams.update(STYLE)
 
 
-def figure(nrows: int = 1, ncols: int = 1, width: float = 6.4, height: float = 4.0, **kw):
+def figure(
+    nrows: int = 1, ncols: int = 1, width: float = 6.4, height: float = 4.0, **kw: Any
+) -> tuple[plt.Figure, Any]:
+    """A figure and its axes in rotbeam's style (`plt.subplots` after `apply_style`).
+
+    Parameters
+    ----------
+    nrows, ncols : int
+        Rows and columns of panels.
+    width, height : float
+        Size of the figure [inch].
+    **kw
+        Passed to `plt.subplots` (sharex, squeeze, gridspec_kw, ...).
+
+    Returns
+    -------
+    tuple
+        (figure, axes) as `plt.subplots` returns them.
+    """
     apply_style()
     return plt.subplots(nrows, ncols, figsize=(width, height), **kw)
 
 
-def save(fig, pdf: str | Path, png: str | Path | None = None) -> None:
+def save(fig: plt.Figure, pdf: str | Path, png: str | Path | None = None) -> None:
     """Write the figure as PDF (and PNG) atomically (`io.atomic_write`), then close it.  The
-    format comes from the final name's suffix (the temporary name ends in `.part`)."""
+    format comes from the final name's suffix (the temporary name ends in `.part`).
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        The figure.
+    pdf : str or Path
+        The first file (any suffix matplotlib writes, despite the name).
+    png : str, Path or None
+        A second file; None: none.
+    """
     for path in (pdf, png):
         if path is None:
             continue
@@ -54,5 +84,14 @@ def save(fig, pdf: str | Path, png: str | Path | None = None) -> None:
     plt.close(fig)
 
 
-def panel_label(ax, text: str) -> None:
+def panel_label(ax: plt.Axes, text: str) -> None:
+    """Write a panel's label, e.g. "(a)", in bold at the top left corner of its axes.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The panel.
+    text : str
+        The label.
+    """
     ax.text(0.01, 0.99, text, transform=ax.transAxes, ha="left", va="top", fontweight="bold")

@@ -12,9 +12,24 @@ from ..runs.scene import SceneResult
 from .style import DYN, QS, figure, save
 
 
-#: File types `plot_verdict` writes.
 def plot_verdict(result: SceneResult, verdict: Verdict, path: str | Path) -> None:
-    """y_m over the steady window, dynamic against quasi-static, with the verdict and the cost."""
+    """Draw y_m over the steady window, dynamic against quasi-static, with the verdict and the
+    cost (`rotbeam simulate --plot`).
+
+    Parameters
+    ----------
+    result : SceneResult
+        The simulated scene.
+    verdict : Verdict
+        Its verdict (`judge`).
+    path : str or Path
+        The figure's file: .png, .pdf or .svg (PLOT_SUFFIXES), written atomically.
+
+    Raises
+    ------
+    RotbeamInputError
+        If `path` does not end in one of PLOT_SUFFIXES (checked before drawing).
+    """
     path = check_plot_suffix(path)
     series = result.time_series()
     t = series["t_s"] - series["t_s"][0]
