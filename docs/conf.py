@@ -1,6 +1,9 @@
 """Sphinx configuration of rotbeam's documentation: the Markdown pages of docs/ (myst-parser),
 the API reference from the numpydoc docstrings (autodoc + numpydoc) and the furo theme.
 
+The tutorial is the scripts in examples/, which sphinx-gallery runs during the build (their
+figures and printed output go into the pages it writes to docs/tutorial/).
+
 Build it strictly (what .ci/run does): sphinx-build -W --keep-going -b html docs docs/_build/html
 """
 
@@ -27,6 +30,7 @@ extensions = [
     "myst_parser",
     "sphinx.ext.autodoc",
     "numpydoc",
+    "sphinx_gallery.gen_gallery",
 ]
 
 source_suffix = {".rst": "restructuredtext", ".md": "markdown"}
@@ -44,6 +48,23 @@ autodoc_typehints = "signature"
 autodoc_default_options = {"members": True, "show-inheritance": True}
 numpydoc_show_class_members = False  # autodoc's :members: lists them once
 numpydoc_class_members_toctree = False
+
+# the tutorial: every script of examples/ is run (in file-name order) and its figures drawn, on
+# every build (also when the script is unchanged: the package under it may not be); a script that
+# fails fails the build
+sphinx_gallery_conf = {
+    "examples_dirs": str(ROOT / "examples"),
+    "gallery_dirs": "tutorial",
+    "filename_pattern": r"\.py$",
+    "within_subsection_order": "FileNameSortKey",
+    "abort_on_example_error": True,
+    "run_stale_examples": True,
+    "download_all_examples": False,
+    "remove_config_comments": True,
+    "image_scrapers": ("matplotlib",),
+    "matplotlib_animations": False,
+    "show_memory": False,
+}
 
 html_theme = "furo"
 html_title = f"rotbeam {release}"
