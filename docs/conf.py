@@ -35,6 +35,8 @@ extensions = [
 
 source_suffix = {".rst": "restructuredtext", ".md": "markdown"}
 root_doc = "index"
+# `name` in a docstring is a cross-reference where the name is documented, code otherwise
+default_role = "py:obj"
 exclude_patterns = ["_build"]
 
 # Markdown pages: anchors for headings down to ### so that links such as
