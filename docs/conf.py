@@ -94,5 +94,13 @@ def _check_api_page(app) -> None:
                 logger.warning(f"api.rst does not document the core module {module}")
 
 
+def _plain_pipes(app, what, name, obj, options, lines) -> None:
+    """Docstrings write |x| for an absolute value (plain text, as the code reads it); in
+    reStructuredText a bar starts a substitution, so every bar is escaped."""
+    for i, line in enumerate(lines):
+        lines[i] = line.replace("|", r"\|")
+
+
 def setup(app):
     app.connect("builder-inited", _check_api_page)
+    app.connect("autodoc-process-docstring", _plain_pipes, priority=400)

@@ -240,8 +240,8 @@ def _grid_panel(ax, runs: pd.DataFrame, scenes: list[str], plan: BenchPlan) -> N
 
 
 def write_outputs(runs: pd.DataFrame, refs: pd.DataFrame, plan: BenchPlan, stem: str) -> None:
-    """`stem`.csv (every run), .md (speed-ups, references, grid study, runs), .pdf, .png, and
-    `stem`_references.csv; all written atomically.
+    """The benchmark's files: STEM.csv (every run), STEM.md (speed-ups, references, grid study,
+    runs), STEM.pdf, STEM.png and STEM_references.csv, all written atomically.
 
     Parameters
     ----------

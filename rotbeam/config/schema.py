@@ -79,7 +79,7 @@ def subschema(root: dict, path: Any) -> dict | None:
     Parameters
     ----------
     root : dict
-        The whole config schema (local `$ref`s are followed).
+        The whole config schema (its local ``$ref`` links are followed).
     path : iterable of str or int
         Keys and list indices from the top of the config.
 
@@ -109,7 +109,7 @@ def describe_allowed(schema: dict | None, root: dict | None = None) -> str:
     schema : dict or None
         The node; None or empty: "a finite number".
     root : dict or None
-        The whole schema, for `$ref`s.
+        The whole schema, for its ``$ref`` links.
 
     Returns
     -------

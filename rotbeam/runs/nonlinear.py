@@ -181,7 +181,7 @@ def arm_rows(bb: BeamBranch, arm: str, amplitude: float) -> list[dict]:
     for b in bb.branch.bifurcations:
         found.setdefault(b.index, []).append(b.kind)
     return [
-        {"amplitude": amplitude, "kind": "branch", "arm": arm, "N": bb.problem.N,
+        {"amplitude": amplitude, "kind": "branch", "arm": arm, "N": bb.problem.model.grid.N,
          "M": bb.problem.M, **row, "bifurcation": "+".join(found.get(row["index"], []))}
         for row in bb.rows()
     ]  # fmt: skip
@@ -220,7 +220,7 @@ def _window(spec: NonlinearSpec, sweep: str, bb: BeamBranch | None) -> tuple[np.
     if not stable or f.size == 0:
         return f, None
     near = min(stable, key=lambda pt: abs(pt.p - f[0]))
-    return f, near.x.reshape(bb.problem.M, bb.problem.N - 1)
+    return f, near.x.reshape(bb.problem.M, bb.problem.model.n)
 
 
 def follow_sweep(
