@@ -105,6 +105,9 @@ class ChainModel:
     coriolis: bool = False
     damping: bool = True
     clamp_spring: float = CLAMP_SPRING
+    #: a point mass mu = m / (rho A L) at the free end: kinetic energy (mu/2)|P_n-dot|^2 and the
+    #: body forces A P_n + B' V_n on it (B' without damping: a payload has none of its own)
+    tip_mass: float = 0.0
     h: float = field(init=False)
     r_o: float = field(init=False)
 
@@ -115,6 +118,7 @@ class ChainModel:
         k = np.arange(1, n + 1)
         gp = n - np.maximum.outer(k, k) + 0.5
         gp[np.diag_indices(n)] = n - k + 0.25
+        gp = gp + self.tip_mass / self.h  # the tip moves by h n_k per dphi_k: c = 1 for every k
         self._gp = gp  # sum_i c_ik c_il (translational part)
         self._g = gp + np.eye(n) / 12.0  # + rotary inertia
         kmat = np.zeros((n, n))
@@ -171,10 +175,25 @@ class ChainModel:
         """Body force per unit length at each link centre, F_i = A C_i + B V_i."""
         return self._forces(np.cos(phi), np.sin(phi), u, self._ab(lam, lamdot))
 
+    def _tip_w(
+        self, c: np.ndarray, s: np.ndarray, u: np.ndarray, ab: tuple[float, ...]
+    ) -> tuple[float, float]:
+        """The tip mass's share of every W_k: (mu / h) (A P_n + B' V_n), B' without damping."""
+        if not self.tip_mass:
+            return 0.0, 0.0
+        a00, a01, a10, a11, _, b01, b10, _ = ab
+        h = self.h
+        px, py = self.r_o + h * np.sum(c), h * np.sum(s)
+        vx, vy = -h * np.sum(u * s), h * np.sum(u * c)
+        k = self.tip_mass / h
+        return k * (a00 * px + a01 * py + b01 * vy), k * (a10 * px + a11 * py + b10 * vx)
+
     def _q(self, c: np.ndarray, s: np.ndarray, u: np.ndarray, ab: tuple[float, ...]) -> np.ndarray:
         h = self.h
         a00, a01, a10, a11, b00, b01, b10, b11 = ab
         wx, wy = self._w(*self._forces(c, s, u, ab))
+        tx, ty = self._tip_w(c, s, u, ab)
+        wx, wy = wx + tx, wy + ty
         at_n = (a11 - a00) * s * c + a10 * c * c - a01 * s * s
         bn_n = b00 * s * s + b11 * c * c - (b01 + b10) * s * c
         return h**2 * (c * wy - s * wx) + h**3 / 12.0 * (at_n + u * bn_n)
@@ -236,6 +255,8 @@ class ChainModel:
         ab = self._ab(lam, lamdot)
         a, b = np.reshape(ab[:4], (2, 2)), np.reshape(ab[4:], (2, 2))
         wx, wy = self._w(*self._forces(c, s, u, ab))
+        twx, twy = self._tip_w(c, s, u, ab)
+        wx, wy = wx + twx, wy + twy
         nx, ny, tx, ty = -s, c, c, s
 
         def quad(m: np.ndarray, px: np.ndarray, py: np.ndarray) -> np.ndarray:

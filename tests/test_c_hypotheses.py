@@ -29,7 +29,7 @@ from rotbeam.solve.static_bvp import solve_static_bvp
 BEAM = Beam()
 SCAN = ScanSpec(c_max=(1.0,), N=20, lo=0.15, hi=0.5, points=8)
 OMEGA0 = omega0_for_cmax(BEAM, 1.0)
-F0 = resonance_frequency_hz(BEAM, OMEGA0)
+F0 = resonance_frequency_hz(BEAM, abs(OMEGA0) + 1.0)
 
 
 def run(name):

@@ -35,7 +35,7 @@ BEAM = {"L": 0.040, "h": 0.002, "b": 0.010, "E": 1.22e6, "rho": 1170.2, "R": 0.1
 def surrogate_line(omega0: float, lo: float, hi: float, points: int) -> pd.DataFrame:
     """A sweep line in the format of rotbeam.sweeps.scan_line, computed with the surrogate."""
     b = Beam(**BEAM)
-    f0 = resonance_frequency_hz(b, omega0)
+    f0 = resonance_frequency_hz(b, abs(omega0) + 1.0)
     rows = []
     for f in f0 * np.linspace(lo, hi, points):
         d = Drive(omega0, 1.0, float(f))

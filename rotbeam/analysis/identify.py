@@ -219,7 +219,7 @@ def start_values(curve: ResonanceCurve, names: tuple[str, ...], beam: Beam,
     if "E" in names:
         target = _peak_frequency(curve)
         for _ in range(6):  # f_0^2 is affine in E at fixed speed: converges in a few steps
-            f0 = resonance_frequency_hz(beam, model.omega0, model.amplitude)
+            f0 = resonance_frequency_hz(beam, abs(model.omega0) + model.amplitude)
             beam = _with(beam, ("E",), np.array([beam.E * (target / f0) ** 2]))
     if "gamma" in names and beam.gamma > 0:
         for _ in range(3):  # a lightly damped start may find no steady state: more damping

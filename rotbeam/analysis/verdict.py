@@ -19,6 +19,7 @@ from ..config.errors import RotbeamInputError
 from ..model.modes import resonance_frequency_hz
 from ..model.params import Beam
 from ..model.secondorder import c0_root
+from ..runs.move import MoveResult
 from ..runs.scene import Scene, SceneResult, simulate
 
 
@@ -88,7 +89,7 @@ def judge(result: SceneResult, threshold: float = 0.10) -> Verdict:
     """
     th = check_threshold(threshold)
     beam, drive = result.scene.beam, result.scene.drive
-    f0 = resonance_frequency_hz(beam, drive.omega0, drive.amplitude)
+    f0 = resonance_frequency_hz(beam, drive.omega_max)
     c0, ratio, branch = linear_estimate(beam.derived()["zeta"], th)
     where = f"f_d / f_0 = {drive.f_d / f0:.3g}; linear estimate f_d* = {ratio * f0:.3g} Hz{branch}"
     d = result.delta_rms
@@ -255,7 +256,7 @@ def critical_start_hz(scene: Scene, threshold: float = 0.10) -> float:
         If `threshold` is not a number in (0, 1).
     """
     beam, drive = scene.beam, scene.drive
-    f0 = resonance_frequency_hz(beam, drive.omega0, drive.amplitude)
+    f0 = resonance_frequency_hz(beam, drive.omega_max)
     return _linear_start(beam, check_threshold(threshold), f0)
 
 
@@ -302,7 +303,7 @@ def critical(scene: Scene, threshold: float = 0.10, rtol: float = 1e-3) -> Criti
         raise RotbeamInputError(f"rtol must be in [1e-8, 0.1], got {rtol!r}")
     t0 = time.perf_counter()
     beam, drive = scene.beam, scene.drive
-    f0 = resonance_frequency_hz(beam, drive.omega0, drive.amplitude)
+    f0 = resonance_frequency_hz(beam, drive.omega_max)
     start = estimate = _linear_start(beam, th, f0)
     excess = _Excess(scene, th)
 
@@ -322,3 +323,41 @@ def critical(scene: Scene, threshold: float = 0.10, rtol: float = 1e-3) -> Criti
     except _NoSteadyState as exc:
         return done(False, math.nan, str(exc))
     return done(True, float(root), f"brentq in [{lo:.4g}, {hi:.4g}] Hz to rtol {rtol:g}")
+
+
+def judge_move(result: MoveResult, threshold: float = 0.10) -> Verdict:
+    """The verdict on a single move: the same threshold on Delta RMS over the move, with the
+    size of the vibration it leaves behind.
+
+    Parameters
+    ----------
+    result : MoveResult
+        The move, simulated (`rotbeam.runs.move.simulate_move`).
+    threshold : float
+        Delta RMS below which quasi-static is good enough, in (0, 1).
+
+    Returns
+    -------
+    Verdict
+        f0_hz is the first in-plane frequency at the move's largest speed; c0 and the estimate
+        of f_d* are NaN (a move has no repetition rate).
+    """
+    th = check_threshold(threshold)
+    scene = result.scene
+    f0 = resonance_frequency_hz(scene.beam, scene.drive.omega_max)
+    d = result.delta_rms
+    settle = "does not settle in the window"
+    if math.isfinite(result.settling_time_s):
+        settle = f"settles below 5 % of the peak in {result.settling_time_s:.3g} s"
+    after = (
+        f"residual vibration {result.residual_ym:.3g} L after the move ({settle}; the move "
+        f"lasts {result.move_s:.3g} s, the first mode's period is {1.0 / f0:.3g} s)"
+    )
+    if not result.converged or not math.isfinite(d):
+        ok, text = None, f"no verdict: {result.message}"
+    elif d < th:
+        ok, text = True, f"quasi-static is good enough: Delta RMS {d:.3g} < {th:g}; {after}"
+    else:
+        ok = False
+        text = f"inertia matters: Delta RMS {d:.3g} >= {th:g}, use the dynamic model; {after}"
+    return Verdict(th, d, ok, f0, math.nan, math.nan, text)

@@ -6,6 +6,7 @@ from __future__ import annotations
 import argparse
 import math
 import re
+from pathlib import Path
 from typing import Any
 
 from ..config.errors import RotbeamInputError
@@ -176,9 +177,66 @@ def add_section(p: argparse.ArgumentParser, section: str, skip: tuple[str, ...] 
         Fields that get no flag.
     """
     group = p.add_argument_group(f"{section} (scene section; a --scene file's values unless set)")
-    for name in SECTIONS[section]:
-        if name not in skip:
+    for name, entry in SECTIONS[section].items():
+        if name not in skip and entry.kind != "data":  # structured: `add_drive_flags`
             add_field(group, section, name)  # type: ignore[arg-type]
+
+
+def add_drive_flags(p: argparse.ArgumentParser, move: bool = True) -> None:
+    """--harmonics, --profile and (for simulate) --move: drives beyond the sine.
+
+    Parameters
+    ----------
+    p : argparse.ArgumentParser
+        The command's parser.
+    move : bool
+        Whether the command takes a single move.
+    """
+    p.add_argument(
+        "--harmonics",
+        help="Omega_0 + sum_k a_k sin(2 pi k f_d t + phase_k) instead of --amplitude, as "
+        "k:a_k:phase_k[,...], e.g. 1:1.0:0,3:0.5:0.7 (rad/s, rad)",
+    )
+    p.add_argument(
+        "--profile",
+        help="one period of sampled speed: a CSV file with columns phase in [0, 1) and omega "
+        "[rad/s], repeated at --fd",
+    )
+    if move:
+        p.add_argument(
+            "--move",
+            help="a single move: a CSV file with columns t [s] and omega [rad/s]; the beam "
+            "starts in the quasi-static state of its first sample",
+        )
+
+
+def harmonics_flag(text: str) -> list[dict[str, float]]:
+    """The harmonics of a --harmonics flag.
+
+    Parameters
+    ----------
+    text : str
+        k:amplitude[:phase][,...], e.g. "1:1.0:0,3:0.5:0.7" (rad/s, rad).
+
+    Returns
+    -------
+    list of dict
+        A scene file's harmonics list.
+    """
+    out = []
+    for part in filter(None, (q.strip() for q in text.split(","))):
+        fields = part.split(":")
+        try:
+            if len(fields) not in (2, 3):
+                raise ValueError
+            k, a = int(fields[0]), finite(fields[1])
+            phase = finite(fields[2]) if len(fields) == 3 else 0.0
+        except (ValueError, argparse.ArgumentTypeError):
+            raise RotbeamInputError(
+                f"argument --harmonics: {part!r}; allowed: k:amplitude[:phase], e.g. 3:0.5:0.7"
+            ) from None
+        out.append({"k": k, "amplitude": a, "phase": phase})
+    return out
 
 
 def add_scene_flags(p: argparse.ArgumentParser, drive_frequency: bool = True) -> None:
@@ -194,6 +252,7 @@ def add_scene_flags(p: argparse.ArgumentParser, drive_frequency: bool = True) ->
     p.add_argument("--scene", help="YAML scene file (sections beam, drive, effects, numerics)")
     for section in ("beam", "drive", "numerics"):
         add_section(p, section, skip=() if drive_frequency or section != "drive" else ("f_d",))
+    add_drive_flags(p, move=drive_frequency)
     p.add_argument("--effects", help="comma list of effects switched on, e.g. centrifugal,euler"
                    "; or auto[:TOL]: those whose share of RMS is >= TOL (default 0.001), from "
                    "`rotbeam effects`" + ("" if drive_frequency else
@@ -321,8 +380,19 @@ def scene_request(args: argparse.Namespace, needs: tuple[str, ...] = ("omega0", 
     section = raw.pop("uncertainty", None)
     raw, file_tol = split_auto(raw)
     spec = scene_sections(raw)
-    for s, values in scene_values(args).items():
+    flags = scene_values(args)
+    for s, values in flags.items():
         spec.setdefault(s, {}).update(values)
+    drive = spec.setdefault("drive", {})
+    if getattr(args, "harmonics", None):
+        drive["harmonics"] = harmonics_flag(args.harmonics)
+        if "amplitude" not in flags.get("drive", {}):  # the file's amplitude gives way
+            drive.pop("amplitude", None)
+    for key in ("profile", "move"):  # a flag's file is relative to where the command runs
+        if getattr(args, key, None):
+            drive[key] = str(Path(getattr(args, key)).resolve())
+    if drive.get("move") is not None:  # a move has its own speeds and no repetition rate
+        needs = tuple(k for k in needs if k not in ("omega0", "f_d"))
     tol = None
     text = args.effects or ""
     if text == "auto" or text.startswith("auto:"):
@@ -338,7 +408,7 @@ def scene_request(args: argparse.Namespace, needs: tuple[str, ...] = ("omega0", 
                 f"drive.{key} is missing: give {flag_name('drive', key)} ({what}) or drive.{key} "
                 f"in the --scene file"
             )
-    scene = build_scene(spec)
+    scene = build_scene(spec, Path(args.scene).parent if args.scene else ".")
     inputs = {}
     if hasattr(args, "uncertainty"):
         from ..analysis.uncertainty import at_means, read_inputs

@@ -59,6 +59,8 @@ def run(args: argparse.Namespace) -> int:
         raise RotbeamInputError(f"--out must end in .csv or .parquet, got {args.out!r}")
     options.check_plot_path(args.plot)
     scene, tol, inputs = options.scene_request(args)
+    if scene.drive.move is not None:
+        return _run_move(args, scene, threshold, tol, inputs)
 
     from ..analysis.verdict import judge
     from ..runs.response import response_of_result
@@ -129,3 +131,34 @@ def _plot(path: str, res, verdict, classified) -> None:
         from ..report.verdict_plot import plot_verdict
 
         plot_verdict(res, verdict, path)
+
+
+def _run_move(args: argparse.Namespace, scene, threshold: float, tol, inputs) -> int:
+    """`rotbeam simulate --move`: the move, its verdict, its numbers, its figure."""
+    if tol is not None or inputs:
+        raise RotbeamInputError(
+            "a move takes neither --effects auto nor --uncertainty (both rest on steady states)"
+        )
+    from ..analysis.verdict import judge_move
+    from ..runs.move import simulate_move
+
+    res = simulate_move(scene)
+    verdict = judge_move(res, threshold)
+    summary = res.summary() | verdict.as_dict()
+    if args.out:
+        from ..report.io import write_series
+
+        write_series(args.out, res.time_series())
+    if args.plot:
+        from ..report.verdict_plot import plot_move
+
+        plot_move(res, verdict, args.plot)
+    if args.json:
+        show.as_json(summary)
+        return 0 if res.converged else 1
+    show.values(summary, ("peak_ym", "peak_ym_quasistatic", "rms_dynamic", "rms_quasistatic",
+                          "delta_rms", "residual_ym", "settling_time_s"))  # fmt: skip
+    show.line("converged", f"{res.converged} ({res.message})")
+    show.line("verdict", verdict.text)
+    show.line("seconds", f"{res.seconds:.3g}")
+    return 0 if res.converged else 1

@@ -142,3 +142,52 @@ def load_scene_file(path: str | Path) -> dict[str, Any]:
             f"got {show(data)} ({type(data).__name__})"
         )
     return data
+
+
+def read_columns(path: str | Path, columns: tuple[str, ...], where: str) -> dict[str, tuple]:
+    """Named numeric columns of a CSV file (a header row, then one number per cell).
+
+    Parameters
+    ----------
+    path : str or Path
+        The file.
+    columns : tuple of str
+        The columns to read; others are ignored.
+    where : str
+        The scene key the file was given for, named in an error.
+
+    Returns
+    -------
+    dict
+        Column name -> its values, a tuple of floats.
+    """
+    import csv
+
+    path = Path(path)
+    if not path.is_file():
+        raise RotbeamInputError(f"{where} = {str(path)!r}: no such file")
+    try:
+        with path.open(newline="") as f:
+            rows = list(csv.reader(f))
+    except (OSError, UnicodeDecodeError) as exc:
+        raise RotbeamInputError(f"{where} = {str(path)!r} cannot be read: {exc}") from None
+    header = [h.strip() for h in rows[0]] if rows else []
+    missing = [c for c in columns if c not in header]
+    if missing:
+        raise RotbeamInputError(
+            f"{where} = {str(path)!r}: no column {', '.join(missing)}; it has "
+            f"{', '.join(header) or 'no header'}; allowed: a header row naming {', '.join(columns)}"
+        )
+    out: dict[str, list[float]] = {c: [] for c in columns}
+    for line, row in enumerate(rows[1:], start=2):
+        if not any(cell.strip() for cell in row):
+            continue
+        for c in columns:
+            cell = row[header.index(c)].strip() if header.index(c) < len(row) else ""
+            try:
+                out[c].append(float(cell))
+            except ValueError:
+                raise RotbeamInputError(
+                    f"{where} = {str(path)!r}, line {line}, column {c}: {cell!r} is not a number"
+                ) from None
+    return {c: tuple(v) for c, v in out.items()}

@@ -1,5 +1,5 @@
 """How the disk turns, in the model's units: lam(tau) = Omega(t) T and its rate lam_dot, for a
-sum of harmonics, a sampled period or a single move (docs/model.md, "Drives")."""
+sum of harmonics (a sampled period becomes one) or a single move (docs/model.md, "Drives")."""
 
 from __future__ import annotations
 
@@ -160,13 +160,17 @@ class HarmonicLaw(DriveLaw):
 
     @property
     def lam_min(self) -> float:
-        """max(0, |lam0| - sum_k |alpha_k|): a lower bound of |lam|, exact for one harmonic."""
-        return max(0.0, abs(self.lam0) - self.swing)
+        """The smallest |lam|: max(0, |lam0| - |alpha|) for one harmonic, sampled for several."""
+        if len(self.terms) == 1:
+            return max(0.0, abs(self.lam0) - self.swing)
+        return super().lam_min
 
     @property
     def lam_max(self) -> float:
-        """|lam0| + sum_k |alpha_k|: an upper bound of |lam|, exact for one harmonic."""
-        return abs(self.lam0) + self.swing
+        """The largest |lam|: |lam0| + |alpha| for one harmonic, sampled for several."""
+        if len(self.terms) == 1:
+            return abs(self.lam0) + self.swing
+        return super().lam_max
 
     @property
     def lam_dot_max(self) -> float:
@@ -186,64 +190,59 @@ class HarmonicLaw(DriveLaw):
         return c
 
 
-def periodic_pchip(x: np.ndarray, y: np.ndarray, period: float) -> Any:
-    """The shape-preserving cubic (PCHIP) through (x, y) on [0, period), continued periodically:
-    three samples wrapped round each end, so that the slopes at the seam are those of a
-    periodic curve (PCHIP's slope at a knot depends on its neighbours only)."""
-    from scipy.interpolate import PchipInterpolator
-
-    xs = np.concatenate([x[-3:] - period, x, x[:3] + period])
-    ys = np.concatenate([y[-3:], y, y[:3]])
-    return PchipInterpolator(xs, ys)
+#: harmonics of a sampled period kept by default (a low-pass: docs/model.md, "Drives")
+PROFILE_HARMONICS = 32
 
 
-@dataclass(frozen=True)
-class SampledLaw(DriveLaw):
-    """lam through samples of one period, by a periodic shape-preserving cubic (PCHIP).
+def harmonics_of_samples(
+    phase: tuple[float, ...], values: tuple[float, ...], keep: int | None = None
+) -> tuple[float, tuple[tuple[int, float, float], ...]]:
+    """The trigonometric interpolant of one sampled period, as a mean and harmonics.
 
-    PCHIP keeps flat stretches flat and ramps monotone (a spline or a Fourier interpolant rings
-    at a trapezoid's corners: Euler loads the motor never applies), and lam_dot is continuous.
+    Samples at unequal phases are first resampled at as many equal ones by a periodic cubic
+    spline.  The interpolant is smooth (it is a sum of sines), passes through the samples and
+    is exact for a band-limited profile (a sampled sine is the sine); noise in the samples
+    reaches the rate lam_dot multiplied by the harmonic's number, hence `keep`.
 
     Parameters
     ----------
     phase : tuple of float
-        Sample phases in [0, 1), increasing.
+        Increasing phases in [0, 1).
     values : tuple of float
-        lam at those phases.
-    omega : float
-        2 pi f_d T.
+        The profile at them.
+    keep : int or None
+        The highest harmonic kept (default PROFILE_HARMONICS, at most half the samples).
+
+    Returns
+    -------
+    mean : float
+        The period mean.
+    terms : tuple of (int, float, float)
+        (k, amplitude, phase): values = mean + sum amplitude sin(2 pi k x + phase).
     """
+    x, y = np.asarray(phase, dtype=float), np.asarray(values, dtype=float)
+    n = x.size
+    uniform = np.arange(n) / n
+    if np.max(np.abs(x - uniform)) > 1e-9:
+        from scipy.interpolate import CubicSpline
 
-    phase: tuple[float, ...]
-    values: tuple[float, ...]
-    omega: float
-    _curve: Any = field(default=None, init=False, repr=False, compare=False)
-
-    def __post_init__(self) -> None:
-        curve = periodic_pchip(np.asarray(self.phase), np.asarray(self.values), 1.0)
-        object.__setattr__(self, "_curve", (curve, curve.derivative()))
-
-    def lam(self, tau: float) -> float:
-        """Omega T at the instant tau."""
-        return float(self._curve[0]((tau / self.period) % 1.0))
-
-    def lam_dot(self, tau: float) -> float:
-        """d lam / d tau at the instant tau."""
-        return float(self._curve[1]((tau / self.period) % 1.0)) / self.period
-
-    def with_omega(self, omega: float) -> SampledLaw:
-        """The same samples repeated at another rate."""
-        return SampledLaw(self.phase, self.values, omega)
-
-    def scaled(self, factor: float) -> SampledLaw:
-        """The samples' swing about their mean times `factor`."""
-        m = self.mean
-        return SampledLaw(self.phase, tuple(m + factor * (v - m) for v in self.values), self.omega)
+        spline = CubicSpline(np.append(x, x[0] + 1.0), np.append(y, y[0]), bc_type="periodic")
+        y = spline(uniform)
+    c = np.fft.rfft(y) / n
+    K = min(n // 2, PROFILE_HARMONICS if keep is None else keep)
+    scale = max(float(np.max(np.abs(c[1:]))), 1e-300) if c.size > 1 else 1.0
+    terms = []
+    for k in range(1, K + 1):
+        ck = c[k] * (1.0 if 2 * k == n else 2.0)  # the Nyquist term is counted once
+        if abs(ck) > 1e-12 * scale:
+            terms.append((k, float(abs(ck)), float(np.angle(ck) + 0.5 * math.pi)))
+    return float(c[0].real), tuple(terms)
 
 
 @dataclass(frozen=True)
 class MoveLaw(DriveLaw):
-    """lam through the samples of a single move by PCHIP, constant before and after it.
+    """lam through the samples of a single move by a cubic spline (not-a-knot: fourth order,
+    lam_dot continuous and smooth), constant before and after the move.
 
     Parameters
     ----------
@@ -259,9 +258,9 @@ class MoveLaw(DriveLaw):
     _curve: Any = field(default=None, init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
-        from scipy.interpolate import PchipInterpolator
+        from scipy.interpolate import CubicSpline
 
-        curve = PchipInterpolator(np.asarray(self.tau), np.asarray(self.values))
+        curve = CubicSpline(np.asarray(self.tau), np.asarray(self.values))
         object.__setattr__(self, "_curve", (curve, curve.derivative()))
 
     @property
@@ -293,3 +292,41 @@ class MoveLaw(DriveLaw):
         """The move's swing about its mean times `factor`."""
         m = self.mean
         return MoveLaw(self.tau, tuple(m + factor * (v - m) for v in self.values))
+
+
+#: named periodic speed profiles and the keys they take
+PROFILE_SHAPES = {"trapezoid": ("omega_min", "omega_max", "ramp"),
+                  "s-curve": ("omega_min", "omega_max", "ramp")}  # fmt: skip
+
+
+def profile_samples(
+    shape: str, omega_min: float, omega_max: float, ramp: float, samples: int = 512
+) -> tuple[tuple[float, ...], tuple[float, ...]]:
+    """One period of a named velocity profile: from omega_min up to omega_max in a `ramp`
+    fraction of the period, held, down again in another `ramp`, held; "trapezoid" ramps
+    linearly (piecewise constant acceleration), "s-curve" by 3 x^2 - 2 x^3 (the acceleration
+    itself ramps: no jerk spikes).
+
+    Parameters
+    ----------
+    shape : str
+        "trapezoid" or "s-curve".
+    omega_min, omega_max : float
+        The two speeds [rad/s].
+    ramp : float
+        Each ramp's share of the period, in (0, 0.5].
+    samples : int
+        Samples of the period.
+
+    Returns
+    -------
+    phase, omega : tuple of float
+        Phases in [0, 1) and the speeds there.
+    """
+    x = np.arange(samples) / samples
+    up = np.clip(x / ramp, 0.0, 1.0)
+    down = np.clip((x - 0.5) / ramp, 0.0, 1.0)
+    if shape == "s-curve":
+        up, down = up * up * (3 - 2 * up), down * down * (3 - 2 * down)
+    w = omega_min + (omega_max - omega_min) * (up - down)
+    return tuple(float(v) for v in x), tuple(float(v) for v in w)

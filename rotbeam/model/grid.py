@@ -105,6 +105,9 @@ class Grid:
             Q_beam, W_beam = Q, Q @ P
             Q = Q.copy()
             Q[:, N - 1] += tip_mass
+            # the last row's curvature reaches s = 1, where the tip's force sets theta_ss(1):
+            # half of its torque again keeps the scheme second order (docs/model.md, payload)
+            Q[n - 1, N - 1] += 0.5 * tip_mass
         return cls(N=N, ds=ds, s=s, P=P, Q=Q, W=Q @ P, K=K, mid=mid, x0=x0, strain=strain,
                    Q_beam=Q_beam, W_beam=W_beam)  # fmt: skip
 

@@ -190,16 +190,16 @@ def linear_forced_response(model: DiscreteModel, K: int = 8) -> dict[int, np.nda
     return out
 
 
-def resonance_frequency_hz(beam: Beam, omega0: float, amplitude: float = 1.0, N: int = 80) -> float:
-    """f_0 [Hz]: the first in-plane frequency of the linearised model at the largest speed
-    |Omega_0| + a of the drive, exact rather than the Southwell line.
+def resonance_frequency_hz(beam: Beam, omega_max: float, N: int = 80) -> float:
+    """f_0 [Hz]: the first in-plane frequency of the linearised model at the drive's largest
+    speed (the premise of Eq. Southwell), exact rather than the Southwell line.
 
     Parameters
     ----------
     beam : Beam
-        The beam.
-    omega0, amplitude : float
-        Mean angular velocity and velocity amplitude [rad/s].
+        The beam (with its payload).
+    omega_max : float
+        The largest |Omega| of the drive [rad/s]: |Omega_0| + a for the sine.
     N : int
         Grid intervals (80: 1e-4 from the continuum).
 
@@ -207,4 +207,4 @@ def resonance_frequency_hz(beam: Beam, omega0: float, amplitude: float = 1.0, N:
     -------
     float
     """
-    return float(modes(beam, abs(omega0) + amplitude, 1, N, softening=True)[0])
+    return float(modes(beam, omega_max, 1, N, softening=True)[0])

@@ -33,7 +33,7 @@ import numpy as np
 from ..config.checks import check_finite, check_nonnegative, check_positive
 from ..config.errors import RotbeamInputError
 from ..config.parameters import check_fields, default
-from .drive import DriveLaw, HarmonicLaw, MoveLaw, SampledLaw
+from .drive import DriveLaw, HarmonicLaw, MoveLaw, harmonics_of_samples
 
 #: Root of 1 + cos(b) cosh(b) = 0 (first cantilever mode).  The paper rounds it to 1.875.
 BETA1 = 1.8751040687119611
@@ -66,6 +66,8 @@ def tip_loaded_root(mu: float, j: float) -> float:
         return (1 + c * ch + mu * b * (c * sh - s * ch) - j * b**3 * (s * ch + c * sh)
                 + mu * j * b**4 * (1 - c * ch))  # fmt: skip
 
+    if mu == 0.0 and j == 0.0:
+        return BETA1
     grid = np.linspace(1e-6, BETA1, 2001)  # f(0) = 2 > 0: the first sign change, then bisection
     values = np.array([f(x) for x in grid])
     first = int(np.argmax(values <= 0.0))
@@ -240,12 +242,15 @@ class Samples:
         "profile" (one period, closed on itself) or "move".
     source : str
         Where the samples come from (a file name), for messages.
+    keep : int or None
+        A profile's highest harmonic kept (default `PROFILE_HARMONICS`): its low-pass.
     """
 
     x: tuple[float, ...]
     omega: tuple[float, ...]
     kind: str = "profile"
     source: str = ""
+    keep: int | None = None
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "x", tuple(float(v) for v in self.x))
@@ -271,6 +276,9 @@ class Samples:
             )
         if self.kind == "profile":
             self._check_period(where, x, w)
+        if self.keep is not None and (isinstance(self.keep, bool) or not isinstance(
+                self.keep, int) or self.keep < 1):  # fmt: skip
+            raise RotbeamInputError(f"{where}: harmonics = {self.keep!r}; allowed: an integer >= 1")
 
     @staticmethod
     def _check_period(where: str, x: np.ndarray, w: np.ndarray) -> None:
@@ -367,7 +375,9 @@ class Drive:
                            tuple(w * T for w in self.move.omega))  # fmt: skip
         w = 2.0 * math.pi * self.f_d * T
         if self.profile is not None:
-            return SampledLaw(self.profile.x, tuple(v * T for v in self.profile.omega), w)
+            mean, terms = harmonics_of_samples(self.profile.x, self.profile.omega,
+                                               self.profile.keep)  # fmt: skip
+            return HarmonicLaw(mean * T, tuple((k, a * T, ph) for k, a, ph in terms), w)
         terms = tuple((h.k, h.amplitude * T, h.phase) for h in self.terms)
         return HarmonicLaw(self.omega0 * T, terms, w)
 

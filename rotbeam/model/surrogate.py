@@ -48,6 +48,8 @@ _GL_NODES = 48
 _HB_TOL = 1e-13
 _HB_K0 = 16
 _HB_KMAX = 4096
+#: harmonics of a sampled drive the surrogate keeps (a harmonic drive keeps all of its own)
+_DRIVE_K = 64
 
 
 def _sigma1() -> float:
@@ -91,6 +93,9 @@ def _mode_integrals() -> dict[str, float]:
         "f_hub": float(w @ p),  # multiplies r_o
         "f_tip": float(w @ (s * p)),
         "phi_mid": float(mode_shape(np.array(0.5))),
+        "k_c_mass": float(w @ (p1 * p1)),  # a tip mass's tension, uniform along the beam
+        "phi1": float(mode_shape(np.array(1.0))),
+        "dphi1": float(mode_shape(np.array(1.0), 1)),
     }
 
 
@@ -102,21 +107,41 @@ def _check_hub(hub_ratio: float) -> float:
     return float(hub_ratio)
 
 
-def southwell_coefficient(hub_ratio: float, softening: bool = True) -> float:
+def southwell_coefficient(
+    hub_ratio: float, softening: bool = True, tip_mass: float = 0.0, tip_inertia: float = 0.0
+) -> float:
     """First Southwell coefficient S_1 from the Rayleigh quotient of the non-rotating mode.
 
-    S_1 = [int n0_unit phi'^2 - sigma int phi^2] / int phi^2, sigma = 1 with in-plane softening
-    (the paper's planar model), 0 flapwise.  Hub 0 flapwise gives the classical 1.1933.
+    S_1 = [int n0 phi'^2 - sigma m_t] / m, n0 the straight beam's centrifugal tension per
+    Omega^2 (with a tip mass mu: plus mu (r_o + 1) all along), m_t = int phi^2 + mu phi(1)^2 the
+    mass the softening acts on, m = m_t + j phi'(1)^2; sigma = 1 with in-plane softening (the
+    paper's planar model), 0 flapwise.  Hub 0 flapwise, no payload: the classical 1.1933.
+
+    Parameters
+    ----------
+    hub_ratio : float
+        R_o / L, >= 0.
+    softening : bool
+        In-plane (True) or flapwise.
+    tip_mass, tip_inertia : float
+        A payload, m / (rho A L) and J / (rho A L^3).
+
+    Returns
+    -------
+    float
     """
     r_o = _check_hub(hub_ratio)
     g = _mode_integrals()
-    k_c = r_o * g["k_c_hub"] + g["k_c_tip"]
-    return (k_c - (1.0 if softening else 0.0) * g["m"]) / g["m"]
+    k_c = r_o * g["k_c_hub"] + g["k_c_tip"] + tip_mass * (r_o + 1.0) * g["k_c_mass"]
+    m_soft = g["m"] + tip_mass * g["phi1"] ** 2
+    m = m_soft + tip_inertia * g["dphi1"] ** 2
+    return (k_c - (1.0 if softening else 0.0) * m_soft) / m
 
 
 def southwell_frequency_hz(beam: Beam, omega: float, softening: bool = True) -> float:
     """f0 [Hz] from (2 pi f0)^2 = (2 pi f_n)^2 + S_1 Omega^2 (Eq. centrifugal_stiffening)."""
-    s1 = southwell_coefficient(beam.hub_ratio, softening)
+    mu, j = beam.tip_mass / (beam.rhoA * beam.L), beam.tip_inertia / (beam.rhoA * beam.L**3)
+    s1 = southwell_coefficient(beam.hub_ratio, softening, mu, j)
     return math.sqrt((2.0 * math.pi * beam.f_n) ** 2 + s1 * omega * omega) / (2.0 * math.pi)
 
 
@@ -125,60 +150,83 @@ class SurrogateModel:
     """Projected coefficients of the one-mode model, plus the drive it is run with."""
 
     dl: Dimensionless
-    m: float  #: int phi^2
-    k_b: float  #: int phi''^2 (= beta_1^4 m)
+    m: float  #: modal mass: int phi^2 + mu phi(1)^2 + j phi'(1)^2
+    k_b: float  #: int phi''^2 (= beta_1^4 int phi^2)
     k_c: float  #: int n0_unit phi'^2 (0 with centrifugal loads off)
     sigma: float  #: 1 with in-plane softening, else 0
-    F_e: float  #: int (r_o + s) phi (0 with Euler loads off)
+    F_e: float  #: int (r_o + s) phi + mu (r_o + 1) phi(1) + j phi'(1) (0 with Euler loads off)
     phi_mid: float  #: phi(1/2): y_m = q phi(1/2)
     eta: float  #: damping actually applied (0 with damping off)
+    m_soft: float  #: the mass the softening acts on: int phi^2 + mu phi(1)^2
+    m_beam: float  #: the mass the damping acts on: int phi^2
 
     @classmethod
     def from_dimensionless(cls, dl: Dimensionless) -> SurrogateModel:
         g = _mode_integrals()
         ef = dl.effects
         r_o = float(dl.hub_ratio)
-        k_c = r_o * g["k_c_hub"] + g["k_c_tip"] if ef.centrifugal else 0.0
+        mu, j = dl.tip_mass, dl.tip_inertia
+        k_c = 0.0
+        if ef.centrifugal:
+            k_c = r_o * g["k_c_hub"] + g["k_c_tip"] + mu * (r_o + 1.0) * g["k_c_mass"]
         sigma = 1.0 if (ef.centrifugal and ef.softening) else 0.0
-        F_e = r_o * g["f_hub"] + g["f_tip"] if ef.euler else 0.0
+        F_e = 0.0
+        if ef.euler:
+            F_e = r_o * g["f_hub"] + g["f_tip"] + mu * (r_o + 1.0) * g["phi1"] + j * g["dphi1"]
+        m_soft = g["m"] + mu * g["phi1"] ** 2
         return cls(
             dl=dl,
-            m=g["m"],
+            m=m_soft + j * g["dphi1"] ** 2,
             k_b=g["k_b"],
             k_c=k_c,
             sigma=sigma,
             F_e=F_e,
             phi_mid=g["phi_mid"],
             eta=float(dl.eta) if ef.damping else 0.0,
+            m_soft=m_soft,
+            m_beam=g["m"],
         )
 
     # --- frozen-rotation quantities ---------------------------------------------------------
     @property
     def southwell(self) -> float:
-        """S_1 = (k_c - sigma m) / m of this model (0 with centrifugal loads off)."""
-        return (self.k_c - self.sigma * self.m) / self.m
+        """S_1 = (k_c - sigma m_soft) / m of this model (0 with centrifugal loads off)."""
+        return (self.k_c - self.sigma * self.m_soft) / self.m
+
+    @property
+    def damping(self) -> float:
+        """eta m_beam / m: the damping per unit modal mass (a payload has none of its own)."""
+        return self.eta * (self.m_beam / self.m)
 
     def frequency(self, lam: float) -> float:
-        """Linear frequency w0 = sqrt(k_b/m + lam^2 (k_c - sigma m)/m) at frozen lam."""
-        w2 = (self.k_b + lam * lam * (self.k_c - self.sigma * self.m)) / self.m
+        """Linear frequency w0 = sqrt(k_b/m + lam^2 (k_c - sigma m_soft)/m) at frozen lam."""
+        w2 = (self.k_b + lam * lam * (self.k_c - self.sigma * self.m_soft)) / self.m
         if w2 <= 0:
             raise RotbeamInputError(f"non-positive modal stiffness {w2:.3g} at lam={lam!r}")
         return math.sqrt(w2)
 
     def frozen_rms(self) -> dict[str, float]:
-        """Closed-form steady state with lam held at lam0: |H(omega)| of the 1-dof oscillator.
+        """The steady state with lam held at lam0: the 1-dof oscillator's |H(k omega)| on each
+        harmonic of the drive's forcing -lam_dot F_e, summed by Parseval.
 
-        Delta RMS is then 1 - sqrt((1 - c0^2)^2 + (2 zeta c0)^2), c0 = omega/w0,
+        For the sine, Delta RMS is 1 - sqrt((1 - c0^2)^2 + (2 zeta c0)^2), c0 = omega/w0,
         2 zeta = eta/w0 (App. E).
+
+        Returns
+        -------
+        dict
+            rms_dynamic, rms_quasistatic, delta_rms and w0 (at lam0).
         """
         dl = self.dl
         w0 = self.frequency(dl.lam0)
-        w = dl.omega
-        amp = dl.alpha * w * self.F_e / self.m  # forcing amplitude per unit modal mass
+        k, d = self._forcing()
+        kw = k * dl.omega
+        amp = np.abs(d) * self.F_e / self.m  # forcing amplitudes per unit modal mass
         qs = amp / (w0 * w0)
-        dyn = amp / math.hypot(w0 * w0 - w * w, self.eta * w)
+        dyn = amp / np.hypot(w0 * w0 - kw * kw, self.damping * kw)
         scale = abs(self.phi_mid) / math.sqrt(2.0)
-        r_dyn, r_qs = dyn * scale, qs * scale
+        r_dyn = float(np.sqrt(np.sum(dyn * dyn))) * scale
+        r_qs = float(np.sqrt(np.sum(qs * qs))) * scale
         return {
             "rms_dynamic": r_dyn,
             "rms_quasistatic": r_qs,
@@ -187,24 +235,28 @@ class SurrogateModel:
         }
 
     # --- harmonic balance -------------------------------------------------------------------
+    def _drive_coefficients(self) -> np.ndarray:
+        """Two-sided Fourier coefficients a_{-K..K} of lam, lam = sum_k a_k exp(i k omega tau),
+        trailing harmonics below 1e-14 of the largest dropped."""
+        c = self.dl.law.coefficients(_DRIVE_K)
+        keep = np.flatnonzero(np.abs(c[1:]) > 1e-14 * max(float(np.max(np.abs(c))), 1e-300))
+        c = c[: (int(keep[-1]) + 2 if keep.size else 2)]
+        return np.concatenate([np.conj(c[:0:-1]) / 2.0, c[:1], c[1:] / 2.0])
+
+    def _forcing(self) -> tuple[np.ndarray, np.ndarray]:
+        """(k >= 1, one-sided complex amplitudes of lam_dot at k omega)."""
+        a = self._drive_coefficients()
+        K = (a.size - 1) // 2
+        k = np.arange(1, K + 1)
+        return k, 2.0 * (1j * k * self.dl.omega) * a[K + 1 :]
+
     def _stiffness_harmonics(self) -> np.ndarray:
-        """Fourier coefficients P_{-2..2} of (k_b + lam^2 (k_c - sigma m)) / m."""
-        dl = self.dl
-        b = (self.k_c - self.sigma * self.m) / self.m
-        lam0, al = dl.lam0, dl.alpha
-        # lam^2 = lam0^2 + al^2/2 + 2 lam0 al sin(w t) - (al^2/2) cos(2 w t)
-        c = np.array(
-            [
-                -al * al / 4.0,
-                1j * lam0 * al,
-                lam0 * lam0 + al * al / 2.0,
-                -1j * lam0 * al,
-                -al * al / 4.0,
-            ],
-            dtype=complex,
-        )
-        p = b * c
-        p[2] += self.k_b / self.m
+        """Fourier coefficients P_{-2K..2K} of (k_b + lam^2 (k_c - sigma m_soft)) / m, K the
+        drive's highest harmonic."""
+        a = self._drive_coefficients()
+        b = (self.k_c - self.sigma * self.m_soft) / self.m
+        p = b * np.convolve(a, a)
+        p[p.size // 2] += self.k_b / self.m
         return p
 
     def _solve(self, K: int, dynamic: bool) -> np.ndarray:
@@ -213,18 +265,21 @@ class SurrogateModel:
         n = 2 * K + 1
         k = np.arange(-K, K + 1)
         p = self._stiffness_harmonics()
-        # banded storage: ab[u + i - j, j] = A[i, j], u = l = 2; A[i, j] = P_{i-j} (+ diag)
-        ab = np.zeros((5, n), dtype=complex)
-        for d in range(-2, 3):  # d = i - j
-            ab[2 + d] = p[d + 2]
+        u = p.size // 2  # band half-width: lam^2 couples harmonics up to u apart
+        # banded storage: ab[u + i - j, j] = A[i, j]; A[i, j] = P_{i-j} (+ diag)
+        ab = np.zeros((2 * u + 1, n), dtype=complex)
+        for d in range(-u, u + 1):  # d = i - j
+            ab[u + d] = p[d + u]
         if dynamic:
             kw = k * dl.omega
-            ab[2] += -kw * kw + 1j * kw * self.eta
+            ab[u] += -kw * kw + 1j * kw * self.damping
+        a = self._drive_coefficients()
+        Kd = (a.size - 1) // 2
         rhs = np.zeros(n, dtype=complex)
-        f = -dl.alpha * dl.omega * self.F_e / self.m / 2.0  # -lam_t F_e/m = -al w F_e/m cos
-        rhs[K - 1] = f
-        rhs[K + 1] = f
-        return solve_banded((2, 2), ab, rhs, check_finite=False)
+        j = np.arange(-Kd, Kd + 1)
+        inside = np.abs(j) <= K
+        rhs[K + j[inside]] = -(1j * j[inside] * dl.omega) * a[inside] * (self.F_e / self.m)
+        return solve_banded((u, u), ab, rhs, check_finite=False)
 
     def harmonics(self, dynamic: bool = True) -> np.ndarray:
         """Converged Fourier coefficients Q_k, k = -K..K, of the periodic q(tau)."""

@@ -443,7 +443,7 @@ def scene_delta(
 
 def _peak_frequency_hz(beam: Beam, omega0: float, scan: ScanSpec) -> float:
     """Peak of our dynamic RMS on f_lin [0.9, 1.15] (11 points, PCHIP on 401)."""
-    f_lin = resonance_frequency_hz(beam, omega0, scan.amplitude)
+    f_lin = resonance_frequency_hz(beam, abs(omega0) + scan.amplitude)
     fs = f_lin * np.linspace(0.9, 1.15, 11)
     st: dict = {}
     r = [scene_delta(Hypothesis(), beam, omega0, f, scan, st)["rms_dynamic"] for f in fs]
@@ -481,13 +481,13 @@ def f0_for(h: Hypothesis, beam: Beam, omega0: float, scan: ScanSpec = ScanSpec()
     """
     a = scan.amplitude
     if h.f0 == "linear_max":
-        return resonance_frequency_hz(beam, omega0, a)
+        return resonance_frequency_hz(beam, abs(omega0) + a)
     if h.f0 == "linear_mean":
         return float(modes(beam, abs(omega0), 1, 80)[0])
     if h.f0 in ("southwell_flap", "southwell_inplane"):
         return southwell_frequency_hz(beam, abs(omega0) + a, softening=h.f0 == "southwell_inplane")
     if h.f0 == "fn_printed":
-        f0 = resonance_frequency_hz(beam, omega0, a)
+        f0 = resonance_frequency_hz(beam, abs(omega0) + a)
         return math.sqrt(f0 * f0 - beam.f_n**2 + F_N_PRINTED**2)
     if h.f0 == "peak":
         return _peak_frequency_hz(beam, omega0, scan)
@@ -522,7 +522,7 @@ def line_scan(h: Hypothesis | str, beam: Beam, c_max: float, scan: ScanSpec = Sc
     """
     h = hypothesis(h)
     omega0 = omega0_for_cmax(beam, c_max, scan.amplitude)
-    f_ref = resonance_frequency_hz(beam, omega0, scan.amplitude)
+    f_ref = resonance_frequency_hz(beam, abs(omega0) + scan.amplitude)
     fds = f_ref * np.linspace(scan.lo, scan.hi, scan.points)
     state: dict = {}
     rows = [scene_delta(h, beam, omega0, float(f), scan, state) for f in fds]

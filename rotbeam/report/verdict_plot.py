@@ -8,6 +8,7 @@ from pathlib import Path
 
 from ..analysis.verdict import Verdict
 from ..config.checks import check_plot_suffix
+from ..runs.move import MoveResult
 from ..runs.scene import SceneResult
 from .style import DYN, QS, figure, save
 
@@ -44,13 +45,48 @@ def plot_verdict(result: SceneResult, verdict: Verdict, path: str | Path) -> Non
     ax.set_ylabel("$y_m / L$ (midspan)")
     where = f"$f_d / f_0$ = {drive.f_d / verdict.f0_hz:.3g}, $f_0$ = {verdict.f0_hz:.3g} Hz"
     where += f"; linear estimate $f_d^*$ = {verdict.fd_star_estimate_hz:.3g} Hz"
+    what = rf"$\Omega_0$ = {drive.omega0:g} rad/s, a = {drive.amplitude:g} rad/s"
+    if drive.kind != "sine":
+        what = f"{drive.kind} drive, largest speed {drive.omega_max:.4g} rad/s"
     ax.set_title(
-        rf"$\Omega_0$ = {drive.omega0:g} rad/s, a = {drive.amplitude:g} rad/s, "
-        rf"$f_d$ = {drive.f_d:g} Hz" + f"\n{where}\n" + verdict.text.split(" (")[0],
+        what + rf", $f_d$ = {drive.f_d:g} Hz" + f"\n{where}\n" + verdict.text.split(" (")[0],
         loc="left",
     )
     cost = f"computed in {result.seconds:.3g} s (N = {num.N}, {num.method}"
     extrapolated = bool(result.extrapolation and result.extrapolation.get("extrapolated"))
     cost += ", Richardson-extrapolated RMS)" if extrapolated else ")"
     ax.legend(title=cost, loc="upper center", bbox_to_anchor=(0.5, -0.2), ncol=2)
+    save(fig, path)
+
+
+def plot_move(result: MoveResult, verdict: Verdict, path: str | Path) -> None:
+    """Draw a single move: the disk's speed, and y_m dynamic against quasi-static through the
+    move and the settling window after it, with the verdict and the cost.
+
+    Parameters
+    ----------
+    result : MoveResult
+        The simulated move.
+    verdict : Verdict
+        Its verdict (`judge_move`).
+    path : str or Path
+        The figure's file: .png, .pdf or .svg, written atomically.
+    """
+    path = check_plot_suffix(path)
+    fig, (top, ax) = figure(2, 1, width=7.0, height=5.4, sharex=True,
+                            gridspec_kw={"height_ratios": (1, 2)})  # fmt: skip
+    t = result.t_s
+    top.plot(t, result.omega, color="k")
+    top.set_ylabel(r"$\Omega$ [rad/s]")
+    top.axvline(result.move_s, color="0.6", lw=0.8)
+    ax.plot(t, result.y_dynamic, color=DYN, label=f"dynamical, peak {result.peak_ym:.3g}")
+    ax.plot(t, result.y_quasistatic, "--", color=QS,
+            label=f"quasi-static, peak {result.peak_ym_quasistatic:.3g}")  # fmt: skip
+    ax.axvline(result.move_s, color="0.6", lw=0.8)
+    ax.set_xlabel("t [s] from the start of the move (grey line: its end)")
+    ax.set_ylabel("$y_m / L$ (midspan)")
+    top.set_title(verdict.text.split(";")[0], loc="left")
+    num = result.scene.numerics
+    cost = f"computed in {result.seconds:.3g} s (N = {num.N}, {num.method})"
+    ax.legend(title=cost, loc="upper center", bbox_to_anchor=(0.5, -0.25), ncol=2)
     save(fig, path)

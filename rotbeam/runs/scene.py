@@ -16,11 +16,23 @@ from typing import Any
 
 import numpy as np
 
-from ..config.scenefile import scene_sections
+from ..config.checks import check_finite
+from ..config.errors import RotbeamInputError
+from ..config.scenefile import read_columns, scene_sections
 from ..model.base import DiscreteModel
 from ..model.criterion import delta_rms, rms
+from ..model.drive import PROFILE_SHAPES, profile_samples
 from ..model.elastica import DiscreteElastica
-from ..model.params import Beam, Dimensionless, Drive, Effects, check_model_range, drive_groups
+from ..model.params import (
+    Beam,
+    Dimensionless,
+    Drive,
+    Effects,
+    Harmonic,
+    Samples,
+    check_model_range,
+    drive_groups,
+)
 from ..solve.extrapolation import richardson
 from ..solve.numerics import Numerics
 from ..solve.quasistatic import quasistatic_series
@@ -46,13 +58,126 @@ class Scene:
         return DiscreteElastica(self.dimensionless, self.numerics.N if N is None else N)
 
 
-def build_scene(spec: dict[str, Any] | None = None) -> Scene:
-    """Scene from a nested dict like the YAML file (sections checked by
-    rotbeam.config.scenefile, values by the classes); names the offending key on error."""
+def build_scene(spec: dict[str, Any] | None = None, base: str | Path = ".") -> Scene:
+    """The scene of a nested dict like a scene file's: its sections checked by
+    rotbeam.config.scenefile, its values by the classes; an error names the offending key.
+
+    Parameters
+    ----------
+    spec : dict or None
+        Sections beam, drive, effects, numerics; omitted keys take the registry's defaults.
+    base : str or Path
+        The folder relative paths of drive.profile and drive.move start from (the scene
+        file's).
+
+    Returns
+    -------
+    Scene
+    """
     sections = scene_sections(spec)
-    scene = Scene(**{name: cls(**sections.get(name, {})) for name, cls in CLASSES.items()})
+    parts = {
+        name: cls(**sections.get(name, {})) for name, cls in CLASSES.items() if name != "drive"
+    }
+    scene = Scene(drive=drive_of(sections.get("drive", {}), Path(base)), **parts)
     check_model_range(scene.beam, scene.drive)
     return scene
+
+
+def drive_of(values: dict[str, Any], base: Path) -> Drive:
+    """The Drive of a scene's drive section: harmonics as mappings {k, amplitude, phase}, a
+    profile as a CSV file (columns phase, omega) or a named shape {shape, omega_min,
+    omega_max, ramp}, a move as a CSV file (columns t, omega).
+
+    Parameters
+    ----------
+    values : dict
+        The drive section.
+    base : Path
+        Folder of relative file paths.
+
+    Returns
+    -------
+    Drive
+    """
+    values = dict(values)
+    if "harmonics" in values and "amplitude" in values:
+        raise RotbeamInputError(
+            "drive: amplitude and harmonics given together; allowed: one of them (harmonics "
+            "replace the amplitude: {k: 1, amplitude: a} is the sine)"
+        )
+    if values.get("harmonics") is not None:
+        values["harmonics"] = _harmonics(values["harmonics"])
+    for key, columns in (("profile", ("phase", "omega")), ("move", ("t", "omega"))):
+        value = values.get(key)
+        if value is None:
+            continue
+        keep = None
+        if key == "profile" and isinstance(value, dict) and "shape" in value:
+            values[key] = _named_profile(value)
+            continue
+        if key == "profile" and isinstance(value, dict):
+            extra = sorted(set(value) - {"file", "harmonics"})
+            if extra or "file" not in value:
+                raise RotbeamInputError(
+                    f"drive.profile = {value!r}: allowed: a CSV file, {{file: F, harmonics: K}} "
+                    f"or a named shape {{shape: trapezoid, ...}}"
+                )
+            value, keep = value["file"], value.get("harmonics")
+        if not isinstance(value, (str, Path)):
+            raise RotbeamInputError(
+                f"drive.{key} = {value!r}: allowed: a CSV file with columns {', '.join(columns)}"
+                + (" or a named shape {shape: trapezoid, ...}" if key == "profile" else "")
+            )
+        data = read_columns(base / value, columns, f"drive.{key}")
+        values[key] = Samples(data[columns[0]], data["omega"], key, str(value), keep)
+    return Drive(**values)
+
+
+def _harmonics(items: Any) -> tuple[Harmonic, ...]:
+    """Harmonic objects from a list of mappings {k, amplitude, phase}."""
+    if not isinstance(items, (list, tuple)):
+        raise RotbeamInputError(
+            f"drive.harmonics = {items!r}: allowed: a list of {{k, amplitude, phase}}"
+        )
+    out = []
+    for i, h in enumerate(items):
+        if isinstance(h, Harmonic):
+            out.append(h)
+            continue
+        if (
+            not isinstance(h, dict)
+            or set(h) - {"k", "amplitude", "phase"}
+            or not {"k", "amplitude"} <= set(h)
+        ):
+            raise RotbeamInputError(
+                f"drive.harmonics[{i}] = {h!r}: allowed: a mapping with k, amplitude [rad/s] "
+                f"and optionally phase [rad]"
+            )
+        out.append(Harmonic(h["k"], h["amplitude"], h.get("phase", 0.0)))
+    return tuple(out)
+
+
+def _named_profile(spec: dict[str, Any]) -> Samples:
+    """Samples of a named profile {shape, omega_min, omega_max, ramp} (model.drive)."""
+    shape = spec.get("shape")
+    if shape not in PROFILE_SHAPES:
+        raise RotbeamInputError(
+            f"drive.profile.shape = {shape!r}; allowed: {', '.join(PROFILE_SHAPES)} (or a CSV "
+            f"file with columns phase, omega)"
+        )
+    keys = PROFILE_SHAPES[shape]
+    wrong = sorted(set(spec) - {"shape", *keys}) + sorted(set(keys) - set(spec))
+    if wrong:
+        raise RotbeamInputError(
+            f"drive.profile ({shape}): keys {', '.join(wrong)}; allowed: shape, {', '.join(keys)}"
+        )
+    nums = {k: check_finite(f"drive.profile.{k}", spec[k]) for k in keys}
+    if not 0.0 < nums["ramp"] <= 0.5:
+        raise RotbeamInputError(
+            f"drive.profile.ramp = {nums['ramp']!r}; allowed: in (0, 0.5] (a share of the period)"
+        )
+    phase, omega = profile_samples(shape, **nums)
+    return Samples(phase, omega, "profile", shape)
 
 
 def load_scene(path: str | Path) -> Scene:
@@ -73,7 +198,7 @@ def load_scene(path: str | Path) -> Scene:
 
     raw = dict(load_scene_file(path))
     raw.pop("uncertainty", None)
-    return build_scene(split_auto(raw)[0])
+    return build_scene(split_auto(raw)[0], Path(path).parent)
 
 
 @dataclass

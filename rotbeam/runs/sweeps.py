@@ -61,7 +61,7 @@ def boundary_scan_frequencies(
         raise RotbeamInputError(f"scan range must satisfy 0 < lo < hi, got lo={lo}, hi={hi}")
     if points < 2:
         raise RotbeamInputError(f"scan points must be >= 2, got {points}")
-    return resonance_frequency_hz(beam, omega0, amplitude) * np.linspace(lo, hi, points)
+    return resonance_frequency_hz(beam, abs(omega0) + amplitude) * np.linspace(lo, hi, points)
 
 
 def scan_line(
@@ -111,7 +111,7 @@ def scan_line(
 
     effects = effects or Effects()
     numerics = numerics or Numerics()
-    f0 = resonance_frequency_hz(beam, omega0, amplitude)
+    f0 = resonance_frequency_hz(beam, abs(omega0) + amplitude)
     rows = []
     guess = None
     t_line = time.perf_counter()

@@ -1,0 +1,224 @@
+"""A single move: the beam from the quasi-static state at the move's first sample, time-stepped
+through the move and a settling window after it, beside its quasi-static twin
+(docs/model.md, "Drives").  The answers: peaks, RMS and Delta RMS over the move, the residual
+vibration after it and how long that takes to settle."""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from ..config.errors import RotbeamInputError
+from ..model.criterion import delta_rms, rms
+from ..model.modes import resonance_frequency_hz
+from ..solve.quasistatic import quasistatic_series
+from ..solve.system import FirstOrderSystem, OutOfTime
+from .scene import Scene
+
+#: without `settle`: integrate first-mode periods after the move until |y_m| over one of them
+#: stays below this share of the peak, at most SETTLE_PERIODS of them
+CALM = 0.01
+SETTLE_PERIODS = 20
+#: settling time: from the end of the move until |y_m| stays below this share of the peak
+SETTLED = 0.05
+#: samples of y_m per first-mode period (and at least MOVE_SAMPLES over the move)
+PER_PERIOD = 32
+MOVE_SAMPLES = 512
+
+
+@dataclass
+class MoveResult:
+    """The beam through a single move, dynamic beside quasi-static."""
+
+    scene: Scene
+    t_s: np.ndarray  #: sample instants from the start of the move [s]
+    y_dynamic: np.ndarray  #: y_m / L at the samples
+    y_quasistatic: np.ndarray  #: y_m / L of the quasi-static twin at the samples
+    omega: np.ndarray  #: the drive's Omega at the samples [rad/s]
+    move_s: float  #: the move's duration [s]
+    peak_ym: float  #: largest |y_m| / L during the move, dynamic
+    peak_ym_quasistatic: float  #: the same, quasi-static
+    rms_dynamic: float  #: RMS of y_m / L over the move
+    rms_quasistatic: float
+    delta_rms: float
+    residual_ym: float  #: largest |y_m| / L after the move ends
+    settling_time_s: float  #: from the move's end until |y_m| stays below SETTLED peak_ym
+    settle_s: float  #: the window integrated after the move [s]
+    converged: bool  #: the whole window was integrated
+    message: str
+    nfev: int
+    seconds: float
+
+    def summary(self) -> dict[str, Any]:
+        """The move's numbers for tables and JSON (scalars only)."""
+        keys = ("peak_ym", "peak_ym_quasistatic", "rms_dynamic", "rms_quasistatic",
+                "delta_rms", "residual_ym", "settling_time_s", "settle_s", "move_s",
+                "converged", "message", "nfev", "seconds")  # fmt: skip
+        out = {k: getattr(self, k) for k in keys}
+        out.update({"N": self.scene.numerics.N, "drive": "move",
+                    "effects": ",".join(self.scene.effects.active())})  # fmt: skip
+        return out
+
+    def time_series(self) -> dict[str, np.ndarray]:
+        """t [s], Omega [rad/s] and y_m / L dynamic and quasi-static at the samples."""
+        return {"t_s": self.t_s, "omega": self.omega, "y_m_dynamic": self.y_dynamic,
+                "y_m_quasistatic": self.y_quasistatic}  # fmt: skip
+
+
+def simulate_move(scene: Scene) -> MoveResult:
+    """Time-step a scene whose drive is a `move` through it and a settling window after it.
+
+    The beam starts in the quasi-static state of the move's first sample (its rate from the
+    quasi-static series); Radau with the exact Jacobian at numerics.rtol; after the move the
+    disk turns at its last speed for `drive.settle` seconds or, without it, first-mode
+    periods until |y_m| over one stays below CALM of the peak (at most SETTLE_PERIODS).  The
+    wall time is bounded by numerics.max_seconds; a run cut short says so.
+
+    Parameters
+    ----------
+    scene : Scene
+        Beam, a drive with a `move`, effects, numerics.
+    Returns
+    -------
+    MoveResult
+    """
+    if scene.drive.move is None:
+        raise RotbeamInputError(
+            f"simulate_move needs a drive with a move, got a {scene.drive.kind} drive"
+        )
+    t0 = time.perf_counter()
+    T = scene.beam.T
+    model = scene.model()
+    law = model.dl.law
+    f1_end = resonance_frequency_hz(scene.beam, abs(scene.drive.move.omega[-1]))
+    f1_max = resonance_frequency_hz(scene.beam, scene.drive.omega_max)
+    dt = 1.0 / (PER_PERIOD * f1_max) / T  # sample step [units of T]
+    steps = max(MOVE_SAMPLES, math.ceil(law.duration / dt))
+    taus = np.arange(steps) * (law.duration / steps)
+    theta_qs = quasistatic_series(model, taus)
+    z = _starting_state(model, taus, theta_qs)
+    system = FirstOrderSystem(model, t0 + scene.numerics.max_seconds)
+    w1 = 2.0 * math.pi * f1_max * T
+    run = _Stepper(system, scene.numerics.rtol, float(np.max(np.abs(theta_qs))) or 1e-6, w1)
+    ok, message = run.through(z, taus, law.duration)
+    y_qs = np.atleast_1d(model.midspan(theta_qs))
+    peak = float(np.max(np.abs(run.y(model)))) if run.samples else math.nan
+    settle_s = 0.0
+    if ok:
+        chunk = 1.0 / f1_end / T
+        settle, message = _settle(run, model, scene, peak, chunk, dt)
+        settle_s = settle * T
+    tau_all = np.asarray(run.times)
+    y = run.y(model)
+    in_move = tau_all < law.duration
+    y_move, qs_move = y[in_move], y_qs[: int(in_move.sum())]
+    after = np.abs(y[~in_move])
+    lam_all = np.array([law.lam(t) for t in tau_all])
+    y_qs_all = np.concatenate([qs_move, np.zeros(after.size)])  # the straight beam after it
+    return MoveResult(
+        scene=scene,
+        t_s=tau_all * T,
+        y_dynamic=y,
+        y_quasistatic=y_qs_all,
+        omega=lam_all / T,
+        move_s=law.duration * T,
+        peak_ym=peak,
+        peak_ym_quasistatic=float(np.max(np.abs(qs_move))) if qs_move.size else math.nan,
+        rms_dynamic=rms(y_move) if y_move.size else math.nan,
+        rms_quasistatic=rms(qs_move) if qs_move.size else math.nan,
+        delta_rms=delta_rms(rms(y_move), rms(qs_move)) if y_move.size else math.nan,
+        residual_ym=float(np.max(after)) if after.size else math.nan,
+        settling_time_s=_settling_time(tau_all[~in_move], after, peak, law.duration) * T,
+        settle_s=settle_s,
+        converged=run.ok,
+        message=message,
+        nfev=run.nfev,
+        seconds=time.perf_counter() - t0,
+    )
+
+
+def _starting_state(model, taus: np.ndarray, theta_qs: np.ndarray) -> np.ndarray:
+    """(Theta, Theta_t) of the quasi-static state at the first sample (its rate by a one-sided
+    difference of the quasi-static series)."""
+    rate = (theta_qs[:, 1] - theta_qs[:, 0]) / (taus[1] - taus[0])
+    return np.concatenate([theta_qs[:, 0], rate])
+
+
+class _Stepper:
+    """Radau over consecutive windows, keeping the samples and the state at each window's end."""
+
+    def __init__(self, system: FirstOrderSystem, rtol: float, scale: float, rate: float) -> None:
+        self.system, self.rtol = system, rtol
+        n = system.n
+        a = 1e-3 * rtol * scale  # the angles' scale is the quasi-static response's, the rates'
+        self.atol = np.concatenate([np.full(n, a), np.full(n, a * rate)])  # times w1
+        self.times: list[float] = []
+        self.samples: list[np.ndarray] = []
+        self.z: np.ndarray | None = None
+        self.tau = 0.0
+        self.nfev = 0
+        self.ok = True
+
+    def through(self, z: np.ndarray, t_eval: np.ndarray, t_end: float) -> tuple[bool, str]:
+        """From state z at self.tau to t_end, sampled at t_eval (those before t_end)."""
+        from scipy.integrate import solve_ivp
+
+        s = self.system
+        t_eval = t_eval[(t_eval >= self.tau) & (t_eval < t_end)]
+        try:
+            sol = solve_ivp(s.rhs, (self.tau, t_end), z, method="Radau", rtol=self.rtol,
+                            atol=self.atol, jac=s.jac, t_eval=np.append(t_eval, t_end))  # fmt: skip
+        except OutOfTime:
+            self.ok = False
+            return False, f"cut by the time budget at t = {self.tau:.4g} T"
+        if sol.status < 0 or not np.all(np.isfinite(sol.y)):
+            self.ok = False
+            return False, f"integrator failed at t = {self.tau:.4g} T: {sol.message}"
+        self.nfev += sol.nfev
+        self.times += list(sol.t[:-1])
+        self.samples += list(sol.y[: s.n, :-1].T)
+        self.z, self.tau = sol.y[:, -1], t_end
+        return True, "through the move"
+
+    def y(self, model) -> np.ndarray:
+        """y_m / L at every sample so far."""
+        if not self.samples:
+            return np.zeros(0)
+        return np.atleast_1d(model.midspan(np.array(self.samples).T))
+
+
+def _settle(run: _Stepper, model, scene: Scene, peak: float, chunk: float, dt: float):
+    """Integrate after the move: `settle` seconds, or first-mode periods until calm."""
+    T = scene.beam.T
+    start = run.tau
+    given = scene.drive.settle
+    limit = given / T if given is not None else SETTLE_PERIODS * chunk
+    while run.tau < start + limit - 1e-12:
+        end = min(run.tau + chunk, start + limit)
+        grid = run.tau + np.arange(math.ceil((end - run.tau) / dt)) * dt
+        first = len(run.samples)
+        ok, message = run.through(run.z, grid, end)
+        if not ok:
+            return run.tau - start, message
+        window = run.y(model)[first:]
+        if given is None and window.size and np.max(np.abs(window)) < CALM * peak:
+            return run.tau - start, f"settled below {CALM:g} of the peak in {run.tau - start:.4g} T"
+    what = "settle window" if given is not None else f"{SETTLE_PERIODS} first-mode periods"
+    return run.tau - start, f"through the move and the {what}"
+
+
+def _settling_time(tau: np.ndarray, after: np.ndarray, peak: float, end: float) -> float:
+    """From the move's end until |y_m| stays below SETTLED peak (units of T; NaN if it does
+    not within the window)."""
+    if not after.size or not math.isfinite(peak):
+        return math.nan
+    above = np.flatnonzero(after >= SETTLED * peak)
+    if not above.size:
+        return 0.0
+    if above[-1] == after.size - 1:
+        return math.nan
+    return float(tau[above[-1] + 1] - end)
