@@ -27,6 +27,7 @@ include: "workflow/rules/about.smk"
 include: "workflow/rules/cluster.smk"
 include: "workflow/rules/c_hypotheses.smk"
 include: "workflow/rules/nonlinear.smk"
+include: "workflow/rules/scenes.smk"
 
 
 rule all:

@@ -17,7 +17,7 @@ from dataclasses import dataclass, replace
 from ..config.checks import check_threshold
 from ..config.errors import RotbeamInputError
 from ..model.modes import resonance_frequency_hz
-from ..model.params import Beam
+from ..model.params import Beam, Drive
 from ..model.secondorder import c0_root
 from ..runs.move import MoveResult
 from ..runs.scene import Scene, SceneResult, simulate
@@ -91,6 +91,9 @@ def judge(result: SceneResult, threshold: float = 0.10) -> Verdict:
     beam, drive = result.scene.beam, result.scene.drive
     f0 = resonance_frequency_hz(beam, drive.omega_max)
     c0, ratio, branch = linear_estimate(beam.derived()["zeta"], th)
+    k = dominant_harmonic(drive)
+    if k > 1:  # harmonic k meets the first mode first
+        ratio, branch = ratio / k, f"{branch} / {k} (harmonic {k} has the largest Euler load)"
     where = f"f_d / f_0 = {drive.f_d / f0:.3g}; linear estimate f_d* = {ratio * f0:.3g} Hz{branch}"
     d = result.delta_rms
     if not result.converged or not math.isfinite(d):
@@ -257,7 +260,16 @@ def critical_start_hz(scene: Scene, threshold: float = 0.10) -> float:
     """
     beam, drive = scene.beam, scene.drive
     f0 = resonance_frequency_hz(beam, drive.omega_max)
-    return _linear_start(beam, check_threshold(threshold), f0)
+    return _linear_start(beam, check_threshold(threshold), f0) / dominant_harmonic(drive)
+
+
+def dominant_harmonic(drive: Drive) -> int:
+    """The harmonic of a periodic drive with the largest Euler load (amplitude times k): the
+    one that meets the first mode first as f_d rises (1 for the sine)."""
+    if drive.move is not None:
+        raise RotbeamInputError("a single move has no repetition rate: no f_d* to find")
+    terms = drive.law(1.0).terms
+    return max(terms, key=lambda t: abs(t[1]) * t[0])[0] if terms else 1
 
 
 def _linear_start(beam: Beam, threshold: float, f0: float) -> float:
@@ -304,7 +316,7 @@ def critical(scene: Scene, threshold: float = 0.10, rtol: float = 1e-3) -> Criti
     t0 = time.perf_counter()
     beam, drive = scene.beam, scene.drive
     f0 = resonance_frequency_hz(beam, drive.omega_max)
-    start = estimate = _linear_start(beam, th, f0)
+    start = estimate = _linear_start(beam, th, f0) / dominant_harmonic(drive)
     excess = _Excess(scene, th)
 
     def done(found: bool, f: float, msg: str) -> Critical:

@@ -289,6 +289,11 @@ def simulate(
     numerics.extrapolate the RMS values are Richardson-extrapolated from N and N // 2 (the
     discretisation is second order in 1/N); the time series stay those of grid N.
     """
+    if scene.drive.move is not None:
+        raise RotbeamInputError(
+            "a single move has no periodic steady state: simulate it with "
+            "rotbeam.runs.move.simulate_move (rotbeam simulate --move)"
+        )
     fine = _simulate_grid(scene, progress, guess)
     num = scene.numerics
     if not num.extrapolate:

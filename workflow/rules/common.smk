@@ -140,6 +140,8 @@ def all_targets():
     ]
     out += ["results/surrogate/speed.json", "results/about/versions.txt"]
     out += [f"results/reproduction/claims.{e}" for e in ("csv", "md")]
+    if config.get("user_scenes"):
+        out += [f"results/scenes/scenes.{e}" for e in ("csv", "md", "pdf", "png")]
     out += [
         f"results/reproduction/c_hypotheses.{e}" for e in ("csv", "md", "pdf", "png")
     ]

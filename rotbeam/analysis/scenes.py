@@ -1,0 +1,62 @@
+"""Many scenes, one table: each simulated (a steady state, or a single move) and judged."""
+
+from __future__ import annotations
+
+import math
+import time
+from pathlib import Path
+from typing import Any
+
+import pandas as pd
+
+from ..runs.move import simulate_move
+from ..runs.scene import build_scene, simulate
+from .verdict import judge, judge_move
+
+#: the table's columns, a scene a row
+COLUMNS = ["scene", "drive", "tip_mass_kg", "N", "rms_dynamic", "rms_quasistatic", "delta_rms",
+           "quasistatic_ok", "f0_hz", "peak_ym", "peak_ym_quasistatic", "residual_ym",
+           "settling_time_s", "converged", "seconds", "verdict"]  # fmt: skip
+
+
+def judge_scenes(
+    specs: dict[str, dict[str, Any]], threshold: float = 0.10, base: str | Path = "."
+) -> pd.DataFrame:
+    """Simulate and judge every scene of `specs`.
+
+    Parameters
+    ----------
+    specs : dict
+        Scene name -> a scene spec (the sections of a scene file).
+    threshold : float
+        Delta RMS below which quasi-static is good enough, in (0, 1).
+    base : str or Path
+        The folder relative drive files start from.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per scene (COLUMNS); the peaks, residual and settling time only for moves.
+    """
+    rows = []
+    for name, spec in specs.items():
+        t0 = time.perf_counter()
+        scene = build_scene(spec, base)
+        row: dict[str, Any] = {"scene": name, "drive": scene.drive.kind, "N": scene.numerics.N,
+                               "tip_mass_kg": scene.beam.tip_mass}  # fmt: skip
+        if scene.drive.move is not None:
+            res = simulate_move(scene)
+            verdict = judge_move(res, threshold)
+            row.update({k: getattr(res, k) for k in ("rms_dynamic", "rms_quasistatic", "delta_rms",
+                        "peak_ym", "peak_ym_quasistatic", "residual_ym", "settling_time_s",
+                        "converged")})  # fmt: skip
+        else:
+            res = simulate(scene)
+            verdict = judge(res, threshold)
+            row.update({k: getattr(res, k) for k in ("rms_dynamic", "rms_quasistatic",
+                        "delta_rms", "converged")})  # fmt: skip
+        row.update(quasistatic_ok=verdict.quasistatic_ok, f0_hz=verdict.f0_hz, verdict=verdict.text,
+                   seconds=time.perf_counter() - t0)  # fmt: skip
+        rows.append(row)
+    table = pd.DataFrame(rows, columns=COLUMNS)
+    return table.fillna({k: math.nan for k in ("peak_ym", "residual_ym")})
