@@ -133,9 +133,9 @@ def test_cli_critical_bad_flags_are_one_line_exit_2(flags, words):
 
 def test_simulate_without_steady_state_classifies_on_the_response_grid(tmp_path):
     """A run from rest stopped after two periods (no steady state: exit 1) is classified on the
-    grid --response-N asks for, over the periods --response-periods asks for, with progress on
-    stderr; the class is one of the four words and the exponent is finite (the class of so
-    short a run is not the point: tests/test_nonlinear.py checks the classifier)."""
+    grid --response-N asks for, over the periods --response-periods asks for; the class is one
+    of the four words and the exponent is finite (the class of so short a run is not the point:
+    tests/test_nonlinear.py checks the classifier)."""
     import math
 
     scene = tmp_path / "s.yaml"
@@ -144,10 +144,52 @@ def test_simulate_without_steady_state_classifies_on_the_response_grid(tmp_path)
         "numerics: {N: 4, start: rest, max_periods: 2, extrapolate: false}\n"
     )
     p = run("simulate", "--scene", str(scene), "--json", "--response-N", "4",
-            "--response-periods", "2", "--progress")  # fmt: skip
+            "--response-periods", "2")  # fmt: skip
     assert p.returncode == 1, p.stderr
     d = json.loads(p.stdout)
     assert d["response"] in ("periodic", "subharmonic", "quasiperiodic", "chaotic")
     assert d["response_N"] == 4 and d["response_periods"] == 4, d["response_message"]
     assert math.isfinite(d["lyapunov_max"])
-    assert "response (N = 4): period 4 of 4" in p.stderr
+    assert p.stderr == ""  # no terminal: no progress bar
+
+
+def in_a_terminal(*argv: str) -> tuple[int, str, str]:
+    """The command with stderr on a pseudo-terminal (stdout a pipe): (exit, stdout, stderr)."""
+    import os
+    import pty
+
+    main, child = pty.openpty()
+    p = subprocess.Popen([sys.executable, "-m", "rotbeam", *argv], stdout=subprocess.PIPE,
+                         stderr=child, text=True)  # fmt: skip
+    os.close(child)
+    err = b""
+    while True:
+        try:
+            chunk = os.read(main, 4096)
+        except OSError:  # the child closed the terminal
+            break
+        if not chunk:
+            break
+        err += chunk
+    out = p.stdout.read()
+    p.wait(timeout=120)
+    os.close(main)
+    return p.returncode, out, err.decode(errors="replace")
+
+
+def test_progress_bar_in_a_terminal_and_not_with_quiet(tmp_path):
+    """On a terminal the classification's periods show as a tqdm bar on stderr (4 of 4), and
+    the JSON on stdout stays one clean object; --quiet draws nothing."""
+    scene = tmp_path / "s.yaml"
+    scene.write_text(
+        "drive: {omega0: 5, f_d: 2}\n"
+        "numerics: {N: 4, start: rest, max_periods: 2, extrapolate: false}\n"
+    )
+    argv = ("simulate", "--scene", str(scene), "--json", "--response-N", "4",
+            "--response-periods", "2")  # fmt: skip
+    rc, out, err = in_a_terminal(*argv)
+    assert rc == 1 and json.loads(out)["response_periods"] == 4
+    assert "response (N = 4)" in err and "4/4" in err
+    rc, out, err = in_a_terminal(*argv, "--quiet")
+    assert rc == 1 and json.loads(out)["response_periods"] == 4
+    assert err == ""

@@ -10,6 +10,7 @@ docs/model.md, "The effect budget".
 from __future__ import annotations
 
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field, fields, replace
 from typing import Any
 
@@ -114,13 +115,21 @@ def _toggled(effects: Effects, name: str) -> tuple[Effects, str]:
     return Effects(**values), note
 
 
-def _run(scene: Scene) -> tuple[SceneResult, float]:
-    t0 = time.perf_counter()
-    res = simulate(scene)
-    return res, time.perf_counter() - t0
+class _Runs:
+    """The budget's simulations, each timed, with `progress()` after each."""
+
+    def __init__(self, progress: Callable[[], None] | None) -> None:
+        self.progress = progress
+
+    def __call__(self, scene: Scene) -> tuple[SceneResult, float]:
+        t0 = time.perf_counter()
+        res = simulate(scene)
+        if self.progress is not None:
+            self.progress()
+        return res, time.perf_counter() - t0
 
 
-def _switched(scene: Scene, base: SceneResult, name: str) -> EffectShare:
+def _switched(scene: Scene, base: SceneResult, name: str, _run: _Runs) -> EffectShare:
     on = getattr(scene.effects, name)
     effects, note = _toggled(scene.effects, name)
     res, seconds = _run(replace(scene, effects=effects))
@@ -135,7 +144,7 @@ def _switched(scene: Scene, base: SceneResult, name: str) -> EffectShare:
                        seconds, res.converged, note)  # fmt: skip
 
 
-def _damping_first_order(scene: Scene, base: SceneResult) -> EffectShare:
+def _damping_first_order(scene: Scene, base: SceneResult, _run: _Runs) -> EffectShare:
     runs = []
     for sign in (+1.0, -1.0):
         beam = replace(scene.beam, gamma=scene.beam.gamma * (1.0 + sign * GAMMA_STEP))
@@ -149,7 +158,7 @@ def _damping_first_order(scene: Scene, base: SceneResult) -> EffectShare:
                        f"central differences at gamma (1 +- {GAMMA_STEP:g})")  # fmt: skip
 
 
-def _sequential(scene: Scene, base: SceneResult, budget: EffectBudget) -> None:
+def _sequential(scene: Scene, base: SceneResult, budget: EffectBudget, _run: _Runs) -> None:
     """Switch the effects that are on off in the order SEQUENCE; record each step's share."""
     effects, previous = scene.effects, base.rms_dynamic
     for name in SEQUENCE:
@@ -163,7 +172,7 @@ def _sequential(scene: Scene, base: SceneResult, budget: EffectBudget) -> None:
     budget.rms_last = previous
 
 
-def effect_budget(scene: Scene) -> EffectBudget:
+def effect_budget(scene: Scene, progress: Callable[[], None] | None = None) -> EffectBudget:
     """Every effect's share of RMS(y_m) and of Delta RMS at this scene.
 
     Each effect is switched off (or on) one at a time, damping by its first-order sensitivity,
@@ -175,6 +184,8 @@ def effect_budget(scene: Scene) -> EffectBudget:
     ----------
     scene : Scene
         The scene to budget (beam, drive, effects, numerics).
+    progress : callable or None
+        Called after every simulation.
 
     Returns
     -------
@@ -182,20 +193,21 @@ def effect_budget(scene: Scene) -> EffectBudget:
         The scene's RMS and Delta RMS, one row per effect and the sequential shares; without
         rows where the scene has no steady state or no deflection (nothing to share out).
     """
+    _run = _Runs(progress)
     base, seconds = _run(scene)
     budget = EffectBudget(scene, base.rms_dynamic, base.delta_rms, seconds)
     if base.rms_dynamic == 0.0 or not base.converged:
         return budget  # nothing to share out: the caller reports the scene's own message
     for f in fields(scene.effects):
         if f.name == "damping" and scene.effects.damping:
-            budget.shares.append(_damping_first_order(scene, base))
+            budget.shares.append(_damping_first_order(scene, base, _run))
         elif f.name == "damping":  # switching damping on changes the scene's nature
             continue
         elif f.name == "softening" and not scene.effects.centrifugal:
             continue  # softening is part of the centrifugal load
         else:
-            budget.shares.append(_switched(scene, base, f.name))
-    _sequential(scene, base, budget)
+            budget.shares.append(_switched(scene, base, f.name, _run))
+    _sequential(scene, base, budget, _run)
     return budget
 
 

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import math
 import time
+from collections.abc import Callable
 from dataclasses import asdict, dataclass, field, replace
 
 import numpy as np
@@ -88,6 +89,7 @@ class ResonanceModel:
     numerics: Numerics = FIT_NUMERICS
     runs: int = 0
     evaluations: int = 0
+    progress: Callable[[], None] | None = None  #: called after every steady state
     _guess: list = field(default_factory=list)
     _cache: dict = field(default_factory=dict)
 
@@ -104,6 +106,8 @@ class ResonanceModel:
                           self.numerics)  # fmt: skip
             res = simulate(scene, guess=self._guess[k])
             self.runs += 1
+            if self.progress is not None:
+                self.progress()
             if not res.converged or not math.isfinite(res.rms_dynamic):
                 raise IdentifyFailed(
                     f"no steady state at f_d = {f:.4g} Hz for {_describe(beam)}: "
@@ -242,6 +246,7 @@ def identify(
     beam: Beam | None = None,
     effects: Effects | None = None,
     numerics: Numerics | None = None,
+    progress: Callable[[], None] | None = None,
 ) -> Identification:
     """Least-squares fit of beam parameters to a measured resonance curve, with intervals.
 
@@ -266,6 +271,8 @@ def identify(
         Effects of the model (default: `Effects()`).
     numerics : Numerics or None
         Numerics of every run (default: FIT_NUMERICS, N = 20).
+    progress : callable or None
+        Called after every steady state of the fit.
 
     Returns
     -------
@@ -282,7 +289,7 @@ def identify(
     """
     t0 = time.perf_counter()
     model = ResonanceModel(curve.f_d, omega0, amplitude, effects or Effects(),
-                           numerics or FIT_NUMERICS)  # fmt: skip
+                           numerics or FIT_NUMERICS, progress=progress)  # fmt: skip
     n, p = curve.f_d.size, len(names)
     if n <= p:
         raise RotbeamInputError(f"{n} points cannot fit {p} parameters; need >= {p + 1}")

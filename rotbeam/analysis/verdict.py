@@ -200,8 +200,8 @@ class _Excess:
     f_d runs once (brentq evaluates the bracket ends again) and the last orbit seeds the next
     collocation; a run without a steady state raises _NoSteadyState."""
 
-    def __init__(self, scene: Scene, th: float) -> None:
-        self.scene, self.th = scene, th
+    def __init__(self, scene: Scene, th: float, progress: Callable[[], None] | None = None) -> None:
+        self.scene, self.th, self.progress = scene, th, progress
         self.seen: dict[float, float] = {}  #: f_d -> Delta RMS, in the order run
         self.guess = None
 
@@ -216,6 +216,8 @@ class _Excess:
             orbit = res.dynamic.periodic
             self.guess = orbit.theta.T if orbit is not None and orbit.converged else None
             self.seen[f_d] = res.delta_rms
+            if self.progress is not None:
+                self.progress()
         return self.seen[f_d] - self.th
 
 
@@ -277,7 +279,12 @@ def _linear_start(beam: Beam, threshold: float, f0: float) -> float:
     return linear_estimate(beam.derived()["zeta"], threshold)[1] * f0
 
 
-def critical(scene: Scene, threshold: float = 0.10, rtol: float = 1e-3) -> Critical:
+def critical(
+    scene: Scene,
+    threshold: float = 0.10,
+    rtol: float = 1e-3,
+    progress: Callable[[], None] | None = None,
+) -> Critical:
     """f_d* [Hz]: the drive frequency at which Delta RMS of the full model reaches `threshold`,
     at the scene's speed and amplitude, by root finding instead of a dense scan.
 
@@ -296,6 +303,9 @@ def critical(scene: Scene, threshold: float = 0.10, rtol: float = 1e-3) -> Criti
         The Delta RMS threshold, dimensionless, in (0, 1).
     rtol : float
         Relative tolerance on f_d*, dimensionless, in [1e-8, 0.1].
+
+    progress : callable or None
+        Called after every full-model run of the search.
 
     Returns
     -------
@@ -317,7 +327,7 @@ def critical(scene: Scene, threshold: float = 0.10, rtol: float = 1e-3) -> Criti
     beam, drive = scene.beam, scene.drive
     f0 = resonance_frequency_hz(beam, drive.omega_max)
     start = estimate = _linear_start(beam, th, f0) / dominant_harmonic(drive)
-    excess = _Excess(scene, th)
+    excess = _Excess(scene, th, progress)
 
     def done(found: bool, f: float, msg: str) -> Critical:
         visited = list(excess.seen.items())

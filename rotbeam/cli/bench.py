@@ -9,6 +9,7 @@ from typing import Any
 
 from ..config.errors import RotbeamInputError
 from . import options
+from .progress import bar
 
 HELP = "work-precision benchmark (error against wall time)"
 
@@ -68,10 +69,13 @@ def run(args: argparse.Namespace) -> int:
         spec["max_seconds"] = args.max_seconds
     plan = plan_from_dict(spec)
 
-    def say(msg: str) -> None:
-        print(msg, file=sys.stderr, flush=True)
+    with bar(args, "benchmark", "run") as b:
 
-    runs, refs = run_benchmark(plan, progress=say)
-    write_outputs(runs, refs, plan, args.out)
-    say(f"wrote {args.out}.csv, .md, .pdf, .png")
+        def say(msg: str) -> None:
+            b.write(msg)
+            b.update(1)
+
+        runs, refs = run_benchmark(plan, progress=say)
+        write_outputs(runs, refs, plan, args.out)
+    print(f"wrote {args.out}.csv, .md, .pdf, .png", file=sys.stderr, flush=True)
     return 0

@@ -7,6 +7,7 @@ import argparse
 from dataclasses import replace
 
 from . import options, show
+from .progress import bar
 
 HELP = ("f_d*: the drive frequency where Delta RMS reaches the threshold at one speed (root "
         "finding on the full model)")  # fmt: skip
@@ -59,7 +60,8 @@ def run(args: argparse.Namespace) -> int:
         scene, auto, budget = auto_scene(replace(scene, drive=replace(scene.drive, f_d=f_start)),
                                          tol)  # fmt: skip
         out["effects_auto"] = show.auto_dict(auto, budget, f_start)
-    res = critical(scene, threshold, ftol)
+    with bar(args, "f_d* search", "run") as b:
+        res = critical(scene, threshold, ftol, progress=b.update)
     out = res.as_dict() | {"omega0": scene.drive.omega0, "amplitude": scene.drive.amplitude,
                            "N": scene.numerics.N,
                            "effects": ",".join(scene.effects.active())} | out  # fmt: skip

@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 
 from . import options, show
+from .progress import bar
 
 HELP = ("each effect's share of RMS(y_m) and of Delta RMS at one scene, by switching it off "
         "(or on), and what each costs")  # fmt: skip
@@ -44,7 +45,8 @@ def run(args: argparse.Namespace) -> int:
 
     from ..analysis.effect_budget import effect_budget
 
-    budget = effect_budget(scene)
+    with bar(args, "effect budget", "run") as b:
+        budget = effect_budget(scene, progress=b.update)
     if args.json:
         show.as_json(budget.as_dict())
         return 0 if budget.shares else 1

@@ -8,6 +8,7 @@ from dataclasses import replace
 from ..config.errors import RotbeamInputError
 from . import options, show
 from .damping import FitRejected, scene_beam
+from .progress import bar
 
 HELP = ("beam parameters (default E, gamma) from a measured resonance curve (columns f_d [Hz], "
         "rms[, rms_std])")  # fmt: skip
@@ -75,7 +76,9 @@ def run(args: argparse.Namespace) -> int:
         raise RotbeamInputError(f"argument --amplitude: must be > 0, got {args.amplitude!r}")
     curve = load_resonance(args.measured, len(names))
     try:
-        res = identify(curve, args.omega0, amplitude, names, scene.beam, scene.effects, numerics)
+        with bar(args, "fit", "steady state") as b:
+            res = identify(curve, args.omega0, amplitude, names, scene.beam, scene.effects,
+                           numerics, progress=b.update)  # fmt: skip
     except IdentifyFailed as exc:
         raise FitRejected(str(exc)) from None
     out = res.as_dict() | {"omega0": args.omega0, "amplitude": amplitude, "N": numerics.N,

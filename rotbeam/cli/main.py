@@ -9,6 +9,7 @@ import sys
 
 from ..config.errors import RotbeamInputError
 from . import options
+from .progress import add_quiet_flag
 
 #: command -> module of rotbeam.cli that parses and runs it
 COMMANDS = {
@@ -44,7 +45,9 @@ def build_parser() -> argparse.ArgumentParser:
     sub = p.add_subparsers(dest="command", required=True, parser_class=options.Parser)
     for name, module in COMMANDS.items():
         mod = importlib.import_module(f".{module}", __package__)
-        mod.add_arguments(sub.add_parser(name, help=mod.HELP, description=mod.HELP))
+        command = sub.add_parser(name, help=mod.HELP, description=mod.HELP)
+        mod.add_arguments(command)
+        add_quiet_flag(command)
     return p
 
 

@@ -3,11 +3,11 @@
 from __future__ import annotations
 
 import argparse
-import sys
 from pathlib import Path
 
 from ..config.errors import RotbeamInputError
 from . import options, show
+from .progress import bar
 
 HELP = "dynamic and quasi-static response of one scene, and the verdict"
 
@@ -28,7 +28,6 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--plot", help="draw y_m, dynamic against quasi-static, with the verdict and "
                    "the cost, to this .png, .pdf or .svg file (without a stable periodic state: "
                    "the Poincare section and the spectrum)")  # fmt: skip
-    p.add_argument("--progress", action="store_true", help="report progress on stderr")
     options.add_uncertainty_flags(p)
 
 
@@ -72,11 +71,20 @@ def run(args: argparse.Namespace) -> int:
 
         scene, auto, budget = auto_scene(scene, tol)
         summary["effects_auto"] = show.auto_dict(auto, budget, scene.drive.f_d)
-    res = simulate(scene, progress=_period_progress if args.progress else None)
+    with bar(args, "time stepping", "period") as b:
+
+        def period(k: int, bound: float) -> None:
+            b.update(1)
+            b.set_postfix_str(f"transient bound {bound:.2e}")
+
+        res = simulate(scene, progress=period)
     verdict = judge(res, threshold)
-    columns, classified = response_of_result(
-        res, response_N, periods, _response_progress(response_N) if args.progress else None
-    )
+    with bar(args, f"response (N = {response_N})", "period", 2 * periods) as b:
+
+        def classified_period(done: int, total: int) -> None:
+            b.update(1)
+
+        columns, classified = response_of_result(res, response_N, periods, classified_period)
     summary = res.summary() | verdict.as_dict() | columns | summary
     prop = None
     if inputs:
@@ -95,18 +103,6 @@ def run(args: argparse.Namespace) -> int:
     else:
         _print(summary, verdict, prop)
     return 0 if res.converged else 1
-
-
-def _period_progress(k: int, bound: float) -> None:
-    print(f"\rperiod {k}: transient bound {bound:.2e}", end="", file=sys.stderr, flush=True)
-
-
-def _response_progress(N: int):
-    def progress(done: int, total: int) -> None:
-        print(f"\rresponse (N = {N}): period {done} of {total}", end="", file=sys.stderr,
-              flush=True)  # fmt: skip
-
-    return progress
 
 
 def _print(summary: dict, verdict, prop) -> None:
