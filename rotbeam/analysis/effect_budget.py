@@ -18,6 +18,7 @@ from ..config.errors import RotbeamInputError
 from ..config.scenefile import AUTO_TOL as _AUTO_TOL
 from ..model.params import Effects
 from ..runs.scene import Scene, SceneResult, simulate
+from ..solve.timebudget import TimeBudget
 
 #: relative step of gamma for the damping's first-order share
 GAMMA_STEP = 0.01
@@ -116,14 +117,15 @@ def _toggled(effects: Effects, name: str) -> tuple[Effects, str]:
 
 
 class _Runs:
-    """The budget's simulations, each timed, with `progress()` after each."""
+    """The budget's simulations, each timed, with `progress()` after each, all within one
+    wall-time budget (a run once it is spent stops at its first period of time stepping)."""
 
-    def __init__(self, progress: Callable[[], None] | None) -> None:
-        self.progress = progress
+    def __init__(self, progress: Callable[[], None] | None, time_budget: TimeBudget) -> None:
+        self.progress, self.time_budget = progress, time_budget
 
     def __call__(self, scene: Scene) -> tuple[SceneResult, float]:
         t0 = time.perf_counter()
-        res = simulate(scene)
+        res = simulate(scene, time_budget=self.time_budget)
         if self.progress is not None:
             self.progress()
         return res, time.perf_counter() - t0
@@ -140,6 +142,8 @@ def _switched(scene: Scene, base: SceneResult, name: str, _run: _Runs) -> Effect
         share = (res.rms_dynamic - base.rms_dynamic) / base.rms_dynamic
         share_delta = res.delta_rms - base.delta_rms
     method = "switched off" if on else "switched on"
+    if not res.converged:  # e.g. the time budget cut it: the share rests on no steady state
+        note = "; ".join(filter(None, (note, res.dynamic.message)))
     return EffectShare(name, on, method, res.rms_dynamic, res.delta_rms, share, share_delta,
                        seconds, res.converged, note)  # fmt: skip
 
@@ -152,10 +156,11 @@ def _damping_first_order(scene: Scene, base: SceneResult, _run: _Runs) -> Effect
     (hi, t_hi), (lo, t_lo) = runs
     d_rms = (hi.rms_dynamic - lo.rms_dynamic) / (2.0 * GAMMA_STEP)  # gamma dRMS/dgamma
     d_delta = (hi.delta_rms - lo.delta_rms) / (2.0 * GAMMA_STEP)
+    note = f"central differences at gamma (1 +- {GAMMA_STEP:g})"
+    failed = [r.dynamic.message for r in (hi, lo) if not r.converged]
     return EffectShare("damping", True, "first order in gamma", float("nan"), float("nan"),
-                       d_rms / base.rms_dynamic, d_delta, t_hi + t_lo,
-                       hi.converged and lo.converged,
-                       f"central differences at gamma (1 +- {GAMMA_STEP:g})")  # fmt: skip
+                       d_rms / base.rms_dynamic, d_delta, t_hi + t_lo, not failed,
+                       "; ".join([note, *failed]))  # fmt: skip
 
 
 def _sequential(scene: Scene, base: SceneResult, budget: EffectBudget, _run: _Runs) -> None:
@@ -172,7 +177,11 @@ def _sequential(scene: Scene, base: SceneResult, budget: EffectBudget, _run: _Ru
     budget.rms_last = previous
 
 
-def effect_budget(scene: Scene, progress: Callable[[], None] | None = None) -> EffectBudget:
+def effect_budget(
+    scene: Scene,
+    progress: Callable[[], None] | None = None,
+    time_budget: TimeBudget | None = None,
+) -> EffectBudget:
     """Every effect's share of RMS(y_m) and of Delta RMS at this scene.
 
     Each effect is switched off (or on) one at a time, damping by its first-order sensitivity,
@@ -186,6 +195,9 @@ def effect_budget(scene: Scene, progress: Callable[[], None] | None = None) -> E
         The scene to budget (beam, drive, effects, numerics).
     progress : callable or None
         Called after every simulation.
+    time_budget : TimeBudget or None
+        The wall-time budget of all its simulations; None: the scene's numerics.max_seconds.
+        A share whose run the budget cut says so in its note.
 
     Returns
     -------
@@ -193,7 +205,7 @@ def effect_budget(scene: Scene, progress: Callable[[], None] | None = None) -> E
         The scene's RMS and Delta RMS, one row per effect and the sequential shares; without
         rows where the scene has no steady state or no deflection (nothing to share out).
     """
-    _run = _Runs(progress)
+    _run = _Runs(progress, time_budget or TimeBudget(scene.numerics.max_seconds))
     base, seconds = _run(scene)
     budget = EffectBudget(scene, base.rms_dynamic, base.delta_rms, seconds)
     if base.rms_dynamic == 0.0 or not base.converged:
@@ -282,7 +294,9 @@ def auto_effects(budget: EffectBudget, tol: float = AUTO_TOL) -> AutoEffects:
                        notes)  # fmt: skip
 
 
-def auto_scene(scene: Scene, tol: float = AUTO_TOL) -> tuple[Scene, AutoEffects, EffectBudget]:
+def auto_scene(
+    scene: Scene, tol: float = AUTO_TOL, time_budget: TimeBudget | None = None
+) -> tuple[Scene, AutoEffects, EffectBudget]:
     """The scene with the effects its budget calls for (`auto_effects` at `tol`).
 
     Parameters
@@ -291,6 +305,8 @@ def auto_scene(scene: Scene, tol: float = AUTO_TOL) -> tuple[Scene, AutoEffects,
         The scene whose effects are budgeted (at its own drive frequency).
     tol : float
         Keep the effects whose |share of RMS(y_m)| is at least this, dimensionless, >= 0.
+    time_budget : TimeBudget or None
+        The wall-time budget of the effect budget's runs (`effect_budget`).
 
     Returns
     -------
@@ -306,7 +322,7 @@ def auto_scene(scene: Scene, tol: float = AUTO_TOL) -> tuple[Scene, AutoEffects,
     RotbeamInputError
         If the scene has no steady state to share out.
     """
-    budget = effect_budget(scene)
+    budget = effect_budget(scene, time_budget=time_budget)
     if not budget.shares:
         raise RotbeamInputError("effects auto: the scene has no steady state to share out")
     auto = auto_effects(budget, tol)

@@ -22,6 +22,7 @@ from ..model.params import Beam, Drive
 
 if TYPE_CHECKING:
     from ..runs.scene import Scene, SceneResult
+    from ..solve.timebudget import TimeBudget
     from .verdict import Critical
 
 BEAM_FIELDS = ("L", "h", "b", "E", "rho", "R", "gamma")
@@ -405,6 +406,7 @@ def simulate_spread(
     method: str = "linear",
     samples: int = 32,
     threshold: float = 0.10,
+    time_budget: TimeBudget | None = None,
 ) -> Propagated:
     """RMS, Delta RMS and P(quasi-static) of a scene over its inputs' spread.
 
@@ -422,6 +424,9 @@ def simulate_spread(
         Sobol runs (a power of two).
     threshold : float
         Delta RMS below which a run counts as quasi-static, dimensionless, in (0, 1).
+    time_budget : TimeBudget or None
+        The wall-time budget of all the runs (a run it cuts counts as failed); None: each run
+        its numerics.max_seconds.
 
     Returns
     -------
@@ -442,7 +447,8 @@ def simulate_spread(
     def run(values: dict[str, float]) -> dict[str, float]:
         beam, drive = apply(scene.beam, scene.drive, values)
         res = plain if (beam, drive) == (scene.beam, scene.drive) else simulate(
-            replace(scene, beam=beam, drive=drive), guess=guess)  # fmt: skip
+            replace(scene, beam=beam, drive=drive), guess=guess,
+            time_budget=time_budget)  # fmt: skip
         return {k: (getattr(res, k) if res.converged else float("nan"))
                 for k in ("rms_dynamic", "rms_quasistatic", "delta_rms")}  # fmt: skip
 
@@ -457,6 +463,7 @@ def critical_spread(
     samples: int = 32,
     threshold: float = 0.10,
     ftol: float = 1e-3,
+    time_budget: TimeBudget | None = None,
 ) -> Propagated:
     """f_d* and c = f_d* / f_0 over the inputs' spread (`plain`: the search at the means).
 
@@ -476,6 +483,9 @@ def critical_spread(
         The Delta RMS threshold of every search, dimensionless, in (0, 1).
     ftol : float
         Relative tolerance of every search on f_d* (`critical`'s rtol), dimensionless.
+    time_budget : TimeBudget or None
+        The wall-time budget of all the searches (a search it cuts counts as failed); None:
+        each search its numerics.max_seconds.
 
     Returns
     -------
@@ -493,7 +503,8 @@ def critical_spread(
     def run(values: dict[str, float]) -> dict[str, float]:
         beam, drive = apply(scene.beam, scene.drive, values)
         same = (beam, drive) == (scene.beam, scene.drive)
-        res = plain if same else critical(replace(scene, beam=beam, drive=drive), threshold, ftol)
+        res = plain if same else critical(replace(scene, beam=beam, drive=drive), threshold, ftol,
+                                          time_budget=time_budget)  # fmt: skip
         return {"f_d_star": res.f_d_star, "c": res.f_d_star / res.f0_hz, "f0_hz": res.f0_hz}
 
     return propagate(inputs, run, method, samples, None)

@@ -21,6 +21,7 @@ from ..model.params import Beam, Drive
 from ..model.secondorder import c0_root
 from ..runs.move import MoveResult
 from ..runs.scene import Scene, SceneResult, simulate
+from ..solve.timebudget import TimeBudget
 
 
 @dataclass(frozen=True)
@@ -198,17 +199,29 @@ MAX_STEPS = 12
 class _Excess:
     """Delta RMS - threshold of the full model at the scene's speed, as a function of f_d.  Each
     f_d runs once (brentq evaluates the bracket ends again) and the last orbit seeds the next
-    collocation; a run without a steady state raises _NoSteadyState."""
+    collocation; a run without a steady state, or the time budget spent, raises _NoSteadyState."""
 
-    def __init__(self, scene: Scene, th: float, progress: Callable[[], None] | None = None) -> None:
+    def __init__(
+        self,
+        scene: Scene,
+        th: float,
+        time_budget: TimeBudget,
+        progress: Callable[[], None] | None = None,
+    ) -> None:
         self.scene, self.th, self.progress = scene, th, progress
+        self.time_budget = time_budget
         self.seen: dict[float, float] = {}  #: f_d -> Delta RMS, in the order run
         self.guess = None
 
     def __call__(self, f_d: float) -> float:
         if f_d not in self.seen:
+            if self.time_budget.spent():
+                raise _NoSteadyState(
+                    self.time_budget.cut(f"the search after {len(self.seen)} full-model runs")
+                )
             drive = replace(self.scene.drive, f_d=f_d)
-            res = simulate(replace(self.scene, drive=drive), guess=self.guess)
+            res = simulate(replace(self.scene, drive=drive), guess=self.guess,
+                           time_budget=self.time_budget)  # fmt: skip
             if not res.converged or not math.isfinite(res.delta_rms):
                 raise _NoSteadyState(
                     f"no steady state at f_d = {f_d:.4g} Hz: {res.dynamic.message}"
@@ -284,6 +297,7 @@ def critical(
     threshold: float = 0.10,
     rtol: float = 1e-3,
     progress: Callable[[], None] | None = None,
+    time_budget: TimeBudget | None = None,
 ) -> Critical:
     """f_d* [Hz]: the drive frequency at which Delta RMS of the full model reaches `threshold`,
     at the scene's speed and amplitude, by root finding instead of a dense scan.
@@ -292,8 +306,8 @@ def critical(
     beam, or the lag branch for overdamped beams: `linear_estimate`), steps by BRACKET_FACTOR
     until Delta RMS - threshold changes sign, then runs brentq to a relative tolerance `rtol`
     in f_d.  This is the crossing nearest the estimate; it is the paper's first crossing where
-    Delta RMS rises monotonically below it.  A run without a steady state ends the search with
-    found = False and its reason.
+    Delta RMS rises monotonically below it.  A run without a steady state, or the time budget
+    spent, ends the search with found = False and its reason.
 
     Parameters
     ----------
@@ -303,9 +317,10 @@ def critical(
         The Delta RMS threshold, dimensionless, in (0, 1).
     rtol : float
         Relative tolerance on f_d*, dimensionless, in [1e-8, 0.1].
-
     progress : callable or None
         Called after every full-model run of the search.
+    time_budget : TimeBudget or None
+        The wall-time budget of the whole search; None: the scene's numerics.max_seconds.
 
     Returns
     -------
@@ -327,7 +342,7 @@ def critical(
     beam, drive = scene.beam, scene.drive
     f0 = resonance_frequency_hz(beam, drive.omega_max)
     start = estimate = _linear_start(beam, th, f0) / dominant_harmonic(drive)
-    excess = _Excess(scene, th, progress)
+    excess = _Excess(scene, th, time_budget or TimeBudget(scene.numerics.max_seconds), progress)
 
     def done(found: bool, f: float, msg: str) -> Critical:
         visited = list(excess.seen.items())

@@ -51,17 +51,19 @@ def run(args: argparse.Namespace) -> int:
     scene, tol, inputs = options.scene_request(args, needs=("omega0",))
 
     from ..analysis.verdict import critical, critical_start_hz
+    from ..solve.timebudget import TimeBudget
 
+    time_budget = TimeBudget(scene.numerics.max_seconds)  # the whole command's
     out = {}
     if tol is not None:  # the budget at the search's first guess, the linear estimate
         from ..analysis.effect_budget import auto_scene
 
         f_start = critical_start_hz(scene, threshold)
         scene, auto, budget = auto_scene(replace(scene, drive=replace(scene.drive, f_d=f_start)),
-                                         tol)  # fmt: skip
+                                         tol, time_budget)  # fmt: skip
         out["effects_auto"] = show.auto_dict(auto, budget, f_start)
     with bar(args, "f_d* search", "run") as b:
-        res = critical(scene, threshold, ftol, progress=b.update)
+        res = critical(scene, threshold, ftol, progress=b.update, time_budget=time_budget)
     out = res.as_dict() | {"omega0": scene.drive.omega0, "amplitude": scene.drive.amplitude,
                            "N": scene.numerics.N,
                            "effects": ",".join(scene.effects.active())} | out  # fmt: skip
@@ -69,7 +71,8 @@ def run(args: argparse.Namespace) -> int:
     if inputs:
         from ..analysis.uncertainty import critical_spread
 
-        prop = critical_spread(scene, res, inputs, args.uq_method, args.uq_samples, threshold, ftol)
+        prop = critical_spread(scene, res, inputs, args.uq_method, args.uq_samples, threshold,
+                               ftol, time_budget)  # fmt: skip
         out["uncertainty"] = prop.as_dict()
     if args.json:
         show.as_json(out)

@@ -10,6 +10,9 @@ from . import options, show
 from .progress import bar
 
 HELP = "dynamic and quasi-static response of one scene, and the verdict"
+#: the steady state's share of the time budget that remains after `--effects auto`; the rest
+#: is kept for the classification that follows when there is no stable steady state
+STEADY_SHARE = 0.5
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
@@ -64,12 +67,14 @@ def run(args: argparse.Namespace) -> int:
     from ..analysis.verdict import judge
     from ..runs.response import response_of_result
     from ..runs.scene import simulate
+    from ..solve.timebudget import TimeBudget
 
+    time_budget = TimeBudget(scene.numerics.max_seconds)  # the whole command's
     summary = {}
     if tol is not None:
         from ..analysis.effect_budget import auto_scene
 
-        scene, auto, budget = auto_scene(scene, tol)
+        scene, auto, budget = auto_scene(scene, tol, time_budget)
         summary["effects_auto"] = show.auto_dict(auto, budget, scene.drive.f_d)
     with bar(args, "time stepping", "period") as b:
 
@@ -77,20 +82,23 @@ def run(args: argparse.Namespace) -> int:
             b.update(1)
             b.set_postfix_str(f"transient bound {bound:.2e}")
 
-        res = simulate(scene, progress=period)
+        res = simulate(scene, progress=period, time_budget=time_budget.part(STEADY_SHARE))
     verdict = judge(res, threshold)
     with bar(args, f"response (N = {response_N})", "period", 2 * periods) as b:
 
         def classified_period(done: int, total: int) -> None:
             b.update(1)
 
-        columns, classified = response_of_result(res, response_N, periods, classified_period)
+        columns, classified = response_of_result(res, response_N, periods, classified_period,
+                                                 time_budget)  # fmt: skip
     summary = res.summary() | verdict.as_dict() | columns | summary
+    summary["classification_seconds"] = classified.seconds if classified is not None else 0.0
     prop = None
     if inputs:
         from ..analysis.uncertainty import simulate_spread
 
-        prop = simulate_spread(scene, res, inputs, args.uq_method, args.uq_samples, threshold)
+        prop = simulate_spread(scene, res, inputs, args.uq_method, args.uq_samples, threshold,
+                               time_budget)  # fmt: skip
         summary["uncertainty"] = prop.as_dict()
     if args.out:
         from ..report.io import write_series
@@ -110,9 +118,14 @@ def _print(summary: dict, verdict, prop) -> None:
                           "C_max", "E_max"))  # fmt: skip
     show.line("converged", f"{summary['converged']} ({summary['message']})")
     show.line("verdict", verdict.text)
+    if summary["response"] != "periodic" or "response_message" in summary:
+        show.line("response", summary.get("response_message", summary["response"]))
     if "effects_auto" in summary:
         show.auto_effects(summary["effects_auto"])
-    show.line("seconds", f"{summary['seconds']:.3g}")
+    seconds = f"{summary['seconds']:.3g}"
+    if summary["classification_seconds"]:
+        seconds += f" (+ {summary['classification_seconds']:.3g} classifying the response)"
+    show.line("seconds", seconds)
     if prop is not None:
         show.uncertainty(prop)
 

@@ -110,7 +110,7 @@ SECTIONS: dict[str, dict[str, Param]] = {
         "max_periods": _int(2000, "give up after this many periods", 2),
         "max_tau": _real(2000.0, "... or after this much dimensionless time", "", 0, lo_open=True),
         "max_seconds": _real(
-            900.0, "... or after this much wall time (no steady state)", "s", 0, lo_open=True
+            900.0, "wall-time budget of a whole command (all its phases)", "s", 0, lo_open=True
         ),  # fmt: skip
         "start": _choice("periodic", "initial state", "periodic", "linear", "quasistatic", "rest"),
         "tail_tol": _real(1e-3, "harmonic tail of the collocated orbit", "", 1e-12, 0.1),

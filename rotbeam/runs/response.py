@@ -23,12 +23,17 @@ import numpy as np
 from ..model.base import DiscreteModel
 from ..solve.lyapunov import largest_lyapunov
 from ..solve.steady import initial_state
-from ..solve.system import FirstOrderSystem
+from ..solve.system import FirstOrderSystem, OutOfTime
+from ..solve.timebudget import TimeBudget
 
 if TYPE_CHECKING:
     from .scene import SceneResult
 
 RESPONSES = ("periodic", "subharmonic", "quasiperiodic", "chaotic")
+#: the answer of a run too short for a class (the time budget ended it first)
+UNCLASSIFIED = "unclassified"
+#: section periods a class needs at least: the exponent's late rate and its spread take four
+MIN_SECTION_PERIODS = 4
 #: stepper tolerance of the classification run.  At a = 3 rad/s, 7 Hz (N = 6, chaotic) the
 #: tangent's growth over two periods is the same to 4e-6 (relative) at rtol 1e-5 and 1e-7, for
 #: a third of the steps; the lightly damped top bending modes, rung by the large motion, set the
@@ -44,7 +49,7 @@ class ResponseResult:
     """The class of a time-stepped response, with the section, spectrum and Lyapunov exponent
     it rests on (`response_of`)."""
 
-    response: str  #: one of RESPONSES
+    response: str  #: one of RESPONSES, or UNCLASSIFIED
     period_multiple: int  #: q for periodic (1) and subharmonic; 0 otherwise
     lyapunov_max: float  #: largest Lyapunov exponent over the section's second half [1/s]
     lyapunov_spread: float  #: its third quarter's rate minus its fourth's (absolute) [1/s]
@@ -152,8 +157,11 @@ def _transient(rhs, jac, z, P, periods, rtol, atol, deadline, progress, total):
 
     done = 0
     for k in range(periods):
-        sol = solve_ivp(rhs, (k * P, (k + 1) * P), z, method="Radau", rtol=rtol, atol=atol,
-                        jac=jac)  # fmt: skip
+        try:
+            sol = solve_ivp(rhs, (k * P, (k + 1) * P), z, method="Radau", rtol=rtol, atol=atol,
+                            jac=jac)  # fmt: skip
+        except OutOfTime:
+            return z, done, f"transient cut from {periods} periods by the time budget"
         if sol.status < 0 or not np.all(np.isfinite(sol.y[:, -1])):
             return z, done, f"transient failed in period {k + 1}: {sol.message}"
         z, done = sol.y[:, -1], k + 1
@@ -184,6 +192,7 @@ def response_of(
     tol: float = 1e-3,
     start: str = "quasistatic",
     progress: Callable[[int, int], None] | None = None,
+    time_budget: TimeBudget | None = None,
 ) -> ResponseResult:
     """Time-step the scene past its transient and classify what it settles into.
 
@@ -203,8 +212,10 @@ def response_of(
     section_periods : int
         Drive periods of the section (and of the Lyapunov estimate).
     max_seconds : float
-        Wall-time budget [s]: the transient gets its share (transient / all periods), the
-        section the rest; the message says where the budget cut a phase short.
+        Wall-time budget [s] when `time_budget` is None: the transient gets its share
+        (transient / all periods), the section the rest; the message says where the budget cut
+        a phase short.  With fewer than MIN_SECTION_PERIODS section periods the response is
+        UNCLASSIFIED.
     rtol : float
         Relative tolerance of the stepper.
     tol : float
@@ -213,6 +224,8 @@ def response_of(
         The state at tau = 0: "quasistatic", "rest" or "linear" (`initial_state`).
     progress : callable or None
         progress(done, total) after every period.
+    time_budget : TimeBudget or None
+        The wall-time budget shared with a command's other phases (replaces `max_seconds`).
 
     Returns
     -------
@@ -227,39 +240,82 @@ def response_of(
     """
     if start not in ("quasistatic", "rest", "linear"):
         raise ValueError(f"start must be quasistatic, rest or linear, got {start!r}")
+    time_budget = time_budget or TimeBudget(max_seconds)
     t0 = time.perf_counter()
     dl, N = model.dl, model.grid.N
     n, P, T = model.n, dl.period, time_scale
-    deadline = t0 + max_seconds
-    system = FirstOrderSystem(model)  # the budget is checked between periods
+    system = FirstOrderSystem(model, time_budget.deadline)  # OutOfTime inside a period
     rhs, jac = system.rhs, system.jac
     qs, _ = initial_state(model, "quasistatic")  # the tolerances' scale, also from rest
     z = qs if start == "quasistatic" else initial_state(model, start)[0]
     atol = _atol(qs[:n], rtol, dl.omega)
     total = transient_periods + section_periods
-    share = t0 + max_seconds * transient_periods / total
-    z, done, note = _transient(rhs, jac, z, P, transient_periods, rtol, atol, share, progress,
-                               total)  # fmt: skip
+    share = time_budget.part(transient_periods / total)
+    z, done, note = _transient(rhs, jac, z, P, transient_periods, rtol, atol, share.deadline,
+                               progress, total)  # fmt: skip
+    if note.startswith("transient cut"):
+        note = share.cut(f"the transient at {done} of {transient_periods} periods")
+    asked = 0 if time_budget.spent() else section_periods  # no section period: no class
 
     def per_interval(k: int) -> None:
         if progress is not None:
             progress(done + k, total)
 
-    ly = largest_lyapunov(rhs, jac, z, P, section_periods, t0=done * P, rtol=rtol, atol=atol,
-                          samples_per_interval=SAMPLES, deadline=deadline,
+    ly = largest_lyapunov(rhs, jac, z, P, asked, t0=done * P, rtol=rtol, atol=atol,
+                          samples_per_interval=SAMPLES, deadline=time_budget.deadline,
                           progress=per_interval)  # fmt: skip
-    found = _classified(model, T, P, ly, tol)
     periods = done + ly.intervals
+    if ly.intervals < MIN_SECTION_PERIODS:
+        return _unclassified(model, time_budget, ly, done, start, N, note, t0)
+    found = _classified(model, T, P, ly, tol)
     q = found["period_multiple"]
     msg = (f"{found['response']}{f' (period {q} P)' if q > 1 else ''}: {periods} periods at "
            f"N={N} ({done} transient, from {start}, rtol {rtol:g}), largest Lyapunov exponent "
            f"{found['lyapunov_max']:.3g} +- {found['lyapunov_spread']:.2g} 1/s (last half; "
            f"whole run {ly.exponent / T:.3g}), section distance d(1)={found['distances'][0]:.2g}"
            + (f"; {note}" if note else "")
-           + (f"; {ly.message}" if "stopped" in ly.message or "failed" in ly.message
+           + (f"; {_section_note(time_budget, ly, asked)}" if ly.intervals < asked
               else ""))  # fmt: skip
     return ResponseResult(**found, periods=periods, N=N, seconds=time.perf_counter() - t0,
                           message=msg, start=start)  # fmt: skip
+
+
+def _section_note(time_budget: TimeBudget, ly, asked: int) -> str:
+    """Why the section is shorter than asked: the budget's cut, or the stepper's failure."""
+    if "time budget" in ly.message:
+        return time_budget.cut(f"the section at {ly.intervals} of {asked} periods")
+    return ly.message
+
+
+def _unclassified(
+    model: DiscreteModel,
+    time_budget: TimeBudget,
+    ly,
+    done: int,
+    start: str,
+    N: int,
+    note: str,
+    t0: float,
+) -> ResponseResult:
+    """The answer of a run the budget ended before MIN_SECTION_PERIODS section periods."""
+    k = ly.intervals
+    cut = (
+        time_budget.cut(f"the classification after {k} section period{'s' * (k != 1)}")
+        if time_budget.spent()
+        else ly.message
+    )
+    msg = (f"{UNCLASSIFIED}: {cut} ({done} transient at N={N}, from {start}); a class needs "
+           f"at least {MIN_SECTION_PERIODS} section periods"
+           + (": give a larger numerics.max_seconds or a smaller response N"
+              if time_budget.spent() else ""))  # fmt: skip
+    if note:
+        msg += f"; {note}"
+    return ResponseResult(
+        response=UNCLASSIFIED, period_multiple=0, lyapunov_max=math.nan,
+        lyapunov_spread=math.inf, section=np.zeros((0, 2)), spectrum_hz=np.zeros(0),
+        spectrum=np.zeros(0), peaks_hz=[], periods=done + k, N=N,
+        seconds=time.perf_counter() - t0, message=msg, start=start,
+    )  # fmt: skip
 
 
 def _atol(theta_qs: np.ndarray, rtol: float, omega: float) -> np.ndarray:
@@ -306,6 +362,7 @@ def response_of_result(
     N: int = 6,
     periods: int = 40,
     progress: Callable[[int, int], None] | None = None,
+    time_budget: TimeBudget | None = None,
 ) -> tuple[dict, ResponseResult | None]:
     """`response` and `lyapunov_max` of a simulated scene: from the multipliers of a stable
     periodic steady state (ln |mu|max per drive period), else by classifying the time-stepped
@@ -321,6 +378,9 @@ def response_of_result(
         Its transient periods, and its classified ones.
     progress : callable or None
         progress(done, total) after every period of the classification.
+    time_budget : TimeBudget or None
+        The classification's wall-time budget (a command's, what its steady state left);
+        None: `response_of`'s default.
 
     Returns
     -------
@@ -335,5 +395,6 @@ def response_of_result(
         lyap = math.log(fl.max_abs) / P if fl.max_abs > 0 else -math.inf
         return {"response": "periodic", "lyapunov_max": lyap}, None
     scene = result.scene
-    r = response_of(scene.model(N), scene.beam.T, periods, periods, progress=progress)
+    r = response_of(scene.model(N), scene.beam.T, periods, periods, progress=progress,
+                    time_budget=time_budget)  # fmt: skip
     return r.as_dict(), r

@@ -37,6 +37,7 @@ from ..solve.extrapolation import richardson
 from ..solve.numerics import Numerics
 from ..solve.quasistatic import quasistatic_series
 from ..solve.steady import SteadyState, steady_state
+from ..solve.timebudget import TimeBudget
 
 CLASSES = {"beam": Beam, "drive": Drive, "effects": Effects, "numerics": Numerics}
 
@@ -282,19 +283,46 @@ def simulate(
     scene: Scene,
     progress: Callable[[int, float], None] | None = None,
     guess: np.ndarray | None = None,
+    time_budget: TimeBudget | None = None,
 ) -> SceneResult:
     """Dynamic steady state and quasi-static response sampled at the same instants.
 
-    `guess` seeds the periodic collocation (the previous point's orbit along a sweep).  With
-    numerics.extrapolate the RMS values are Richardson-extrapolated from N and N // 2 (the
-    discretisation is second order in 1/N); the time series stay those of grid N.
+    With numerics.extrapolate the RMS values are Richardson-extrapolated from N and N // 2 (the
+    discretisation is second order in 1/N); the time series stay those of grid N.  Both grids
+    draw on one wall-time budget.
+
+    Parameters
+    ----------
+    scene : Scene
+        Beam, drive (periodic: a move is `rotbeam.runs.move.simulate_move`'s), effects and
+        numerics.
+    progress : callable or None
+        progress(period, transient bound) after every period of time stepping on grid N.
+    guess : numpy.ndarray or None
+        An orbit (M, n) on grid N that seeds the collocation (the previous point's along a
+        sweep).
+    time_budget : TimeBudget or None
+        The wall-time budget of the whole call, shared with a caller's other phases; None:
+        numerics.max_seconds from the call.
+
+    Returns
+    -------
+    SceneResult
+        Both responses over one RMS window, their RMS and Delta RMS, the steady state's status,
+        message and multipliers, the wall time, and Richardson's account when asked for.
+
+    Raises
+    ------
+    RotbeamInputError
+        For a drive that is a single move.
     """
     if scene.drive.move is not None:
         raise RotbeamInputError(
             "a single move has no periodic steady state: simulate it with "
             "rotbeam.runs.move.simulate_move (rotbeam simulate --move)"
         )
-    fine = _simulate_grid(scene, progress, guess)
+    time_budget = time_budget or TimeBudget(scene.numerics.max_seconds)
+    fine = _simulate_grid(scene, progress, guess, time_budget)
     num = scene.numerics
     if not num.extrapolate:
         return fine
@@ -307,6 +335,7 @@ def simulate(
         Scene(scene.beam, scene.drive, scene.effects, replace(num, N=Nc, extrapolate=False)),
         None,
         coarse_guess,
+        time_budget,
     )
     info = {"N_coarse": Nc, "rms_dynamic_N": fine.rms_dynamic,
             "rms_dynamic_coarse": coarse.rms_dynamic, "rms_quasistatic_N": fine.rms_quasistatic,
@@ -321,7 +350,8 @@ def simulate(
     else:
         r_dyn, r_qs = fine.rms_dynamic, fine.rms_quasistatic
         info["extrapolated"] = False
-        why = "coarse run failed" if not coarse.converged else f"grids differ by {change:.2g}"
+        why = (f"grids differ by {change:.2g}" if coarse.converged
+               else f"N = {Nc}: {coarse.dynamic.message}")  # fmt: skip
         info["note"] = f"not extrapolated: {why}"
     return replace(
         fine,
@@ -335,8 +365,9 @@ def simulate(
 
 def _simulate_grid(
     scene: Scene,
-    progress: Callable[[int, float], None] | None = None,
-    guess: np.ndarray | None = None,
+    progress: Callable[[int, float], None] | None,
+    guess: np.ndarray | None,
+    time_budget: TimeBudget,
 ) -> SceneResult:
     t0 = time.perf_counter()
     num = scene.numerics
@@ -347,7 +378,8 @@ def _simulate_grid(
     taus_one = np.arange(m) / m * dl.period
     th_qs1, y_qs1 = quasistatic_midspan(model, taus_one)
     scale = float(np.max(np.abs(th_qs1))) if th_qs1.size else 0.0
-    dyn = steady_state(model, num, progress=progress, response_scale=scale or None, guess=guess)
+    dyn = steady_state(model, num, progress=progress, response_scale=scale or None, guess=guess,
+                       time_budget=time_budget)  # fmt: skip
     # the quasi-static response has the drive's period: reuse the one-period solve when the
     # window's instants fall on its phases (they do, but for a failed run's last sample)
     phase = (dyn.tau / dl.period) % 1.0 * m
@@ -358,8 +390,8 @@ def _simulate_grid(
         theta_qs, y_qs = quasistatic_midspan(model, dyn.tau)
     r_dyn = rms(dyn.y_m)
     r_qs = rms(y_qs)
-    if not math.isfinite(r_dyn):
-        r_dyn = float("nan")
+    if not math.isfinite(r_dyn) or (not dyn.converged and dyn.periods == 0):
+        r_dyn = float("nan")  # no period seen: the window would be the initial state
     return SceneResult(
         scene=scene,
         dynamic=dyn,

@@ -16,6 +16,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .system import OutOfTime
+
 
 @dataclass
 class LyapunovResult:
@@ -113,9 +115,13 @@ def largest_lyapunov(
         if samples_per_interval:
             t_eval = ta + np.arange(samples_per_interval) * interval / samples_per_interval
             t_eval = np.append(t_eval, ta + interval)
-        sol = solve_ivp(aug, (ta, ta + interval), np.concatenate([z, v]), method=method,
-                        rtol=rtol, atol=np.concatenate([atol, np.full(d, 1e-10)]),
-                        t_eval=t_eval, **kwargs)  # fmt: skip
+        try:
+            sol = solve_ivp(aug, (ta, ta + interval), np.concatenate([z, v]), method=method,
+                            rtol=rtol, atol=np.concatenate([atol, np.full(d, 1e-10)]),
+                            t_eval=t_eval, **kwargs)  # fmt: skip
+        except OutOfTime:  # raised by a right-hand side that keeps the deadline itself
+            msg = f"stopped by the time budget inside interval {k + 1} of {intervals}"
+            break
         if sol.status < 0 or not np.all(np.isfinite(sol.y[:, -1])):
             msg = f"integration failed in interval {k + 1}: {sol.message}"
             break

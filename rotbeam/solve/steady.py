@@ -36,6 +36,7 @@ from .stability import (
     window_stability,
 )
 from .system import FirstOrderSystem, OutOfTime
+from .timebudget import TimeBudget
 
 
 @dataclass
@@ -444,15 +445,15 @@ def tolerances(
 
 
 class PeriodStepper:
-    """One `solve_ivp` over whole drive periods, within the wall-time deadline; counts the
+    """One `solve_ivp` over whole drive periods, within the wall-time budget; counts the
     right-hand side and Jacobian evaluations over all its calls (`nfev`, `njev`)."""
 
     def __init__(
-        self, model: DiscreteModel, num: Numerics, tol: Tolerances, deadline: float
+        self, model: DiscreteModel, num: Numerics, tol: Tolerances, time_budget: TimeBudget
     ) -> None:
         self.model, self.dl, self.num, self.tol = model, model.dl, num, tol
-        self.n = model.n
-        system = FirstOrderSystem(model, deadline)
+        self.n, self.time_budget = model.n, time_budget
+        system = FirstOrderSystem(model, time_budget.deadline)
         self.rhs = system.rhs
         self.jac = system.jac if num.jacobian == "exact" else None
         if num.method == "TRBDF2":
@@ -500,10 +501,12 @@ class PeriodStepper:
         return sol
 
 
-def _out_of_time(num: Numerics, k: int, P: float, bound: float) -> str:
+def _out_of_time(stepper: PeriodStepper, k: int, bound: float) -> str:
+    """No steady state: which phase the budget cut, and the transient bound it left."""
+    where = f"the time stepping at N = {stepper.model.grid.N} after {k} whole periods"
     return (
-        f"no steady state within the time budget of {num.max_seconds:g} s "
-        f"({k} whole periods, tau={k * P:.4g}); remaining transient bound {bound:.3g}"
+        f"no steady state: {stepper.time_budget.cut(where)} (tau={k * stepper.dl.period:.4g}); "
+        f"remaining transient bound {bound:.3g}"
     )
 
 
@@ -563,7 +566,7 @@ class March:
 
     z: np.ndarray  #: state after the last whole period
     last: tuple[np.ndarray, np.ndarray]  #: (tau, Theta) samples of the last period seen
-    status: int = 1  #: 0 steady, 1 no steady state within budget, -1 integrator failure
+    status: int = 1  #: 0 steady, 1 no steady state within the budget, -1 integrator failure
     message: str = ""
     k: int = 0  #: whole periods integrated
     bound: float = math.inf  #: last transient bound
@@ -616,7 +619,7 @@ def march(
         t_eval = np.append(period_samples(dl, k, 1, m), (k + 1) * P)
         sol = stepper.periods(k, 1, out.z, t_eval, tol.rtol_first if k == 0 else tol.rtol)
         if sol is None:
-            out.message = _out_of_time(num, k, P, out.bound)
+            out.message = _out_of_time(stepper, k, out.bound)
             return out
         if sol.status < 0 or not np.all(np.isfinite(sol.y)):
             out.status, out.message = -1, f"integrator failed in period {k + 1}: {sol.message}"
@@ -711,7 +714,7 @@ def rms_window(
     taus = period_samples(dl, k, p, m)
     sol = stepper.periods(k, p, run.z, taus, stepper.tol.rtol)
     if sol is None:
-        msg = _out_of_time(num, k, dl.period, run.bound) + " (in the RMS window)"
+        msg = _out_of_time(stepper, k, run.bound) + " (in the RMS window)"
         return Window(*run.last, 1, msg, k)
     if sol.status < 0 or sol.y.shape[1] != taus.size or not np.all(np.isfinite(sol.y)):
         return Window(*run.last, -1, f"integrator failed in the RMS window: {sol.message}", k)
@@ -781,6 +784,7 @@ def steady_state(
     response_scale: float | None = None,
     guess: np.ndarray | None = None,
     state0: np.ndarray | None = None,
+    time_budget: TimeBudget | None = None,
 ) -> SteadyState:
     """The periodic steady state of `model` under its drive, sampled over the RMS window.
 
@@ -808,6 +812,9 @@ def steady_state(
         (Theta, Theta_t) at tau = 0 instead of `numerics.start`: time stepping from where the
         beam is (no collocation), e.g. the previous drive frequency's final `state` in a sweep
         that shows hysteresis.
+    time_budget : TimeBudget or None
+        The wall-time budget the time stepping stops at (a command's, shared with its other
+        phases); None: `numerics.max_seconds` from the call.
 
     Returns
     -------
@@ -832,7 +839,7 @@ def steady_state(
     tol = tolerances(model, num, z, response_scale, periodic, from_orbit)
     if unstable_orbit:
         z = leave_orbit(z, orbit_fl, tol.scale)
-    stepper = PeriodStepper(model, num, tol, deadline=t0 + num.max_seconds)
+    stepper = PeriodStepper(model, num, tol, time_budget or TimeBudget(num.max_seconds, t0))
     run = march(stepper, z, from_orbit, progress)
     win = rms_window(stepper, run, periodic, from_orbit)
     status, message, fl = reported_stability(model, num, win, orbit_fl, from_orbit)
