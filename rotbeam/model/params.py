@@ -28,7 +28,7 @@ def tip_loaded_root(mu: float, j: float) -> float:
     """First root b of the cantilever's characteristic equation with a tip mass and inertia.
 
     The non-rotating beam with a payload at its free end vibrates first at b^2 / T, b the first
-    root of
+    root of::
 
         1 + cos b cosh b + mu b (cos b sinh b - sin b cosh b)
           - j b^3 (sin b cosh b + cos b sinh b) + mu j b^4 (1 - cos b cosh b) = 0
