@@ -1,4 +1,9 @@
-"""Many scenes, one table: each simulated (a steady state, or a single move) and judged."""
+"""Many scenes, one table: each simulated (a steady state, or a single move) and judged.
+
+The workflow's `user_scenes` (config/config.yaml -> results/scenes/) runs through here: a
+periodic drive by `rotbeam.runs.scene.simulate` and `judge`, a move by
+`rotbeam.runs.move.simulate_move` and `judge_move`.
+"""
 
 from __future__ import annotations
 
@@ -22,21 +27,28 @@ COLUMNS = ["scene", "drive", "tip_mass_kg", "N", "rms_dynamic", "rms_quasistatic
 def judge_scenes(
     specs: dict[str, dict[str, Any]], threshold: float = 0.10, base: str | Path = "."
 ) -> pd.DataFrame:
-    """Simulate and judge every scene of `specs`.
+    """Simulate and judge every scene of `specs`, one after the other.
 
     Parameters
     ----------
     specs : dict
         Scene name -> a scene spec (the sections of a scene file).
     threshold : float
-        Delta RMS below which quasi-static is good enough, in (0, 1).
+        Delta RMS below which quasi-static is good enough, dimensionless, in (0, 1).
     base : str or Path
         The folder relative drive files start from.
 
     Returns
     -------
     pandas.DataFrame
-        One row per scene (COLUMNS); the peaks, residual and settling time only for moves.
+        One row per scene (COLUMNS): RMS values, peaks and residual in units of L, Delta RMS
+        dimensionless, f0_hz [Hz], settling_time_s and seconds [s]; the peaks, residual and
+        settling time only for moves (NaN otherwise).
+
+    Raises
+    ------
+    RotbeamInputError
+        For a scene spec `rotbeam.runs.scene.build_scene` refuses, or a bad threshold.
     """
     rows = []
     for name, spec in specs.items():

@@ -279,8 +279,28 @@ def critical_start_hz(scene: Scene, threshold: float = 0.10) -> float:
 
 
 def dominant_harmonic(drive: Drive) -> int:
-    """The harmonic of a periodic drive with the largest Euler load (amplitude times k): the
-    one that meets the first mode first as f_d rises (1 for the sine)."""
+    """The harmonic of a periodic drive with the largest Euler load: where the f_d* search starts.
+
+    Harmonic k puts an Euler load of amplitude proportional to k |a_k| at k f_d, so it meets
+    the first mode at f_d = f_0 / k; the one with the largest k |a_k| sets the linear estimate
+    c_0 f_0 / k that `judge` prints and `critical` starts from (docs/model.md, "Drives").
+
+    Parameters
+    ----------
+    drive : Drive
+        A periodic drive: the sine, harmonics or a sampled profile (its interpolant's
+        harmonics).
+
+    Returns
+    -------
+    int
+        k >= 1 (1 for the sine).
+
+    Raises
+    ------
+    RotbeamInputError
+        For a single move, which has no repetition rate and no f_d*.
+    """
     if drive.move is not None:
         raise RotbeamInputError("a single move has no repetition rate: no f_d* to find")
     terms = drive.law(1.0).terms

@@ -21,9 +21,13 @@ from .schema import g
 
 @dataclass(frozen=True)
 class Param:
-    """One field: `kind` is "real", "int", "bool", "choice" or "data" (a structure its class
-    checks: harmonics, sampled speeds); bounds are inclusive unless `lo_open` / `hi_open` (None:
-    unbounded); `optional` fields may be None."""
+    """One field of the registry: its type, default, help, unit and range.
+
+    `kind` is "real", "int", "bool", "choice" or "data" (a structure its class checks:
+    harmonics, sampled speeds); bounds are inclusive unless `lo_open` / `hi_open` (None:
+    unbounded); `optional` fields may be None.  `unit` is the SI unit shown in help and
+    messages ("" for dimensionless values).
+    """
 
     kind: str
     default: Any
@@ -164,18 +168,58 @@ OPTIONS: dict[str, dict[str, Param]] = {
 
 
 def param(section: str, name: str) -> Param:
-    """The registry entry of one field: a scene section's or a command option's."""
+    """The registry entry of one field: a scene section's or a command option's.
+
+    Parameters
+    ----------
+    section : str
+        A scene section (`SECTIONS`: beam, drive, effects, numerics) or a command's options
+        (`OPTIONS`).
+    name : str
+        The field.
+
+    Returns
+    -------
+    Param
+
+    Raises
+    ------
+    KeyError
+        For an unknown section or field.
+    """
     table = SECTIONS.get(section)
     return table[name] if table is not None else OPTIONS[section][name]
 
 
 def default(section: str, name: str) -> Any:
-    """The default of one field (what the dataclasses use)."""
+    """The default of one field (what the dataclasses use).
+
+    Parameters
+    ----------
+    section, name : str
+        The section and the field (`param`).
+
+    Returns
+    -------
+    object
+        The default, in the field's unit.
+    """
     return param(section, name).default
 
 
 def allowed(p: Param) -> str:
-    """What a field accepts, in words (for error messages and help)."""
+    """What a field accepts, in words (for error messages and help).
+
+    Parameters
+    ----------
+    p : Param
+        The field.
+
+    Returns
+    -------
+    str
+        E.g. "a finite number > 0", "an integer in [3, 2000]", "true or false".
+    """
     if p.kind == "data":
         return "see the docs"
     if p.kind == "bool":
@@ -199,8 +243,30 @@ def _bounds(p: Param) -> str:
 
 
 def check_value(section: str, name: str, value: Any) -> Any:
-    """`value` checked against the registry: returned as the field's type, or one line naming
-    `section.name`, the value and what is allowed."""
+    """A value checked against the registry, returned as the field's type.
+
+    The one check behind the dataclasses, scene files and CLI flags, so that a bad value fails
+    with the same one line wherever it comes from.  "data" fields are returned as they are
+    (their class checks them).
+
+    Parameters
+    ----------
+    section, name : str
+        The section and the field (`param`).
+    value : object
+        The value, in the field's unit.
+
+    Returns
+    -------
+    object
+        `value` as a bool, a choice, an int or a float.
+
+    Raises
+    ------
+    RotbeamInputError
+        One line naming `section.name`, the value and what is allowed: the wrong type, a value
+        that is not finite, out of range, or not one of the choices.
+    """
     p = param(section, name)
     key = f"{section}.{name}"
     if p.kind == "data" or (p.optional and value is None):
@@ -235,13 +301,39 @@ def check_value(section: str, name: str, value: Any) -> Any:
 
 
 def check_fields(obj: object, section: str) -> None:
-    """Check every registry field of a frozen dataclass instance in place."""
+    """Check every registry field of a frozen dataclass instance in place.
+
+    Each field is replaced by its checked value (an int given for a real becomes a float).
+
+    Parameters
+    ----------
+    obj : object
+        The instance (`Beam`, `Drive`, `Effects` or `Numerics`).
+    section : str
+        Its registry section.
+
+    Raises
+    ------
+    RotbeamInputError
+        For the first field that fails `check_value`.
+    """
     for name in SECTIONS[section]:
         object.__setattr__(obj, name, check_value(section, name, getattr(obj, name)))
 
 
 def help_text(section: str, name: str) -> str:
-    """`help [unit] (default ...; allowed ...)` for a CLI flag."""
+    """The help of a CLI flag, from the registry: ``help [unit] (default ...; allowed ...)``.
+
+    Parameters
+    ----------
+    section, name : str
+        The section and the field (`param`).
+
+    Returns
+    -------
+    str
+        One line.
+    """
     p = param(section, name)
     unit = f" [{p.unit}]" if p.unit else ""
     shown = (

@@ -38,8 +38,27 @@ _Loader.add_implicit_resolver(
 )
 
 
-def load_yaml(text: str):
-    """YAML with scientific notation read as numbers."""
+def load_yaml(text: str) -> Any:
+    """YAML with scientific notation read as numbers.
+
+    PyYAML follows YAML 1.1, which reads 1e6 as a string; scene files write numbers as people
+    do.
+
+    Parameters
+    ----------
+    text : str
+        The YAML document.
+
+    Returns
+    -------
+    object
+        The parsed document (a dict for a scene file).
+
+    Raises
+    ------
+    yaml.YAMLError
+        For text that is not YAML.
+    """
     return yaml.load(text, Loader=_Loader)
 
 
@@ -49,8 +68,25 @@ AUTO_TOL = 1e-3
 
 
 def auto_tol(value: Any, where: str) -> float:
-    """TOL of an `auto` request: "auto" (AUTO_TOL), "auto:TOL" or a number, in [0, 1); `where`
-    names the key or flag in the one-line error."""
+    """TOL of an `auto` request: the share of RMS(y_m) below which an effect is dropped.
+
+    Parameters
+    ----------
+    value : object
+        "auto" (AUTO_TOL), "auto:TOL" or a number.
+    where : str
+        The key or flag, named in the one-line error.
+
+    Returns
+    -------
+    float
+        TOL, dimensionless, in [0, 1).
+
+    Raises
+    ------
+    RotbeamInputError
+        For anything else, or a TOL outside [0, 1).
+    """
     if value == "auto":
         return AUTO_TOL
     if isinstance(value, str) and value.startswith("auto:"):
@@ -68,8 +104,29 @@ def auto_tol(value: Any, where: str) -> float:
 
 
 def split_auto(spec: Any) -> tuple[Any, float | None]:
-    """The scene spec without its `effects: auto` / `effects: {auto: TOL}` / `effects: auto:TOL`,
-    and TOL (None without).  Other keys beside `auto` are the effects the budget starts from."""
+    """The scene spec without its `effects: auto` request, and that request's TOL.
+
+    `effects: auto`, `effects: {auto: TOL}` and `effects: auto:TOL` are taken out before the
+    sections are checked; other keys beside `auto` stay: they are the effects the budget starts
+    from.
+
+    Parameters
+    ----------
+    spec : object
+        A scene spec (a dict of sections); anything else is returned as it is.
+
+    Returns
+    -------
+    spec : object
+        The spec without the request (a new dict when it had one).
+    tol : float or None
+        TOL in [0, 1), None without a request.
+
+    Raises
+    ------
+    RotbeamInputError
+        For a TOL that `auto_tol` refuses.
+    """
     if not isinstance(spec, dict):
         return spec, None
     eff = spec.get("effects")
@@ -84,8 +141,28 @@ def split_auto(spec: Any) -> tuple[Any, float | None]:
 
 
 def scene_sections(spec: Any) -> dict[str, dict[str, Any]]:
-    """The sections of a scene spec as fresh dicts; unknown sections or keys and sections that
-    are not mappings are errors naming the key, its value and what is allowed."""
+    """The sections of a scene spec as fresh dicts, their keys checked against the registry.
+
+    Only the names are checked here; the values are the classes' (rotbeam.runs.scene builds
+    them).
+
+    Parameters
+    ----------
+    spec : object
+        A scene spec: None or a mapping of sections (beam, drive, effects, numerics) to
+        mappings of keys.
+
+    Returns
+    -------
+    dict
+        Section name -> a new dict of its keys and values ({} for None).
+
+    Raises
+    ------
+    RotbeamInputError
+        One line naming the key, its value and what is allowed: a spec or a section that is
+        not a mapping, an unknown section or an unknown key.
+    """
     if spec is None:
         return {}
     if not isinstance(spec, dict):
@@ -120,6 +197,25 @@ def _fields(section: str) -> list[str]:
 
 
 def load_scene_file(path: str | Path) -> dict[str, Any]:
+    """The raw content of a YAML scene file, as a mapping of sections.
+
+    Parameters
+    ----------
+    path : str or Path
+        The file.
+
+    Returns
+    -------
+    dict
+        Its top-level mapping ({} for an empty file); the sections are not checked here
+        (`scene_sections`).
+
+    Raises
+    ------
+    RotbeamInputError
+        One line naming the file: it does not exist, cannot be read, is not valid YAML (with
+        the line and column) or does not hold a mapping.
+    """
     path = Path(path)
     if not path.is_file():
         raise RotbeamInputError(f"scene file {str(path)!r} does not exist")
@@ -159,7 +255,13 @@ def read_columns(path: str | Path, columns: tuple[str, ...], where: str) -> dict
     Returns
     -------
     dict
-        Column name -> its values, a tuple of floats.
+        Column name -> its values, a tuple of floats (blank lines skipped).
+
+    Raises
+    ------
+    RotbeamInputError
+        One line naming `where` and the file: no such file, unreadable, a column missing from
+        the header, or a cell that is not a number (with its line and column).
     """
     import csv
 

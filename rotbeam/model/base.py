@@ -20,7 +20,7 @@ from .params import Dimensionless, Effects
 class DiscreteModel(ABC):
     """A discrete model of the beam on the rotating disk, as the solvers see it.
 
-    The model is second order in the n angles Theta,
+    The model is second order in the n angles Theta (time in units of T)::
 
         M(Theta) Theta_tt + eta Md(Theta) Theta_t + S(Theta) Theta_t^2 + 2 lam B(Theta) Theta_t
             + K Theta + L(Theta; lam, lam_dot) = 0,
@@ -99,38 +99,93 @@ class DiscreteModel(ABC):
 
     @abstractmethod
     def at(self, dl: Dimensionless) -> DiscreteModel:
-        """The same model (grid, structure) for another scene `dl`."""
+        """The same model (grid, structure) for another scene.
+
+        Sweeps, continuation and the effect budget change the scene and keep the grid.
+
+        Parameters
+        ----------
+        dl : Dimensionless
+            The other scene.
+
+        Returns
+        -------
+        DiscreteModel
+            A model of the same class and grid for `dl`.
+        """
 
     def damping_rows(self, theta: np.ndarray) -> tuple[np.ndarray, np.ndarray] | None:
-        """The mass matrix the damping acts on and its gyroscopic partner, (Md, Bd) at m
-        instants, when it is not M (a payload has no damping of its own); None: eta M."""
+        """The mass matrix the damping acts on and its gyroscopic partner, when it is not M.
+
+        The damping is per unit length of the beam; a payload adds mass without damping, so a
+        model with one gives Md (and Bd, its partner as B is M's, for the Jacobian) here.
+
+        Parameters
+        ----------
+        theta : numpy.ndarray
+            Angles [rad], shape (m, n).
+
+        Returns
+        -------
+        tuple of numpy.ndarray or None
+            (Md, Bd), shape (m, n, n) each; None: the damping is eta M (the default).
+        """
         return None
 
     def velocity_matrix_rows(self, theta: np.ndarray, B: np.ndarray) -> np.ndarray:
-        """S, the matrix multiplying Theta_t^2, at m instants: B (the derivation's), unless a
-        model says otherwise (the printed appendix).  The Jacobians use B either way."""
+        """S, the matrix multiplying Theta_t^2, at m instants.
+
+        The derivation gives S = B (the default); the printed appendix's symmetric matrix is
+        the one model that says otherwise (`rotbeam.paper.printed_model`).  The Jacobians use B
+        either way, so they are exact only for S = B.
+
+        Parameters
+        ----------
+        theta : numpy.ndarray
+            Angles [rad], shape (m, n).
+        B : numpy.ndarray
+            The gyroscopic matrices at the same instants, shape (m, n, n).
+
+        Returns
+        -------
+        numpy.ndarray
+            S, shape (m, n, n) (`B` itself by default).
+        """
         return B
 
     # --- the drive ------------------------------------------------------------------------------
     def drive_rows(self, tau: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """lam and lam_dot at the instants `tau` (units of T).
+        """The drive lam = Omega T and lam_dot at many instants, for the row-wise methods.
 
         Parameters
         ----------
         tau : numpy.ndarray
-            Instants, shape (m,).
+            Instants in units of T, shape (m,).
 
         Returns
         -------
         lam, lam_dot : numpy.ndarray
-            Shape (m,) each.
+            Dimensionless, shape (m,) each.
         """
         dl = self.dl
         return np.array([dl.lam(t) for t in tau]), np.array([dl.lam_dot(t) for t in tau])
 
     # --- first-order form -----------------------------------------------------------------------
     def velocity_vector(self, theta_t: np.ndarray, lam: np.ndarray | float) -> np.ndarray:
-        """v = Theta_t^2 (+ 2 lam Theta_t with Coriolis): what B multiplies, rows of theta_t."""
+        """What B multiplies: v = Theta_t^2, plus 2 lam Theta_t with Coriolis on.
+
+        Parameters
+        ----------
+        theta_t : numpy.ndarray
+            Angular rates (units of 1/T), shape (m, n) or (n,).
+        lam : numpy.ndarray or float
+            Omega T at the m instants, shape (m,), or one value.
+
+        Returns
+        -------
+        numpy.ndarray
+            v, the shape of `theta_t`.
+        """
         v = theta_t**2
         if self.effects.coriolis:
             lam = np.asarray(lam, dtype=float)
@@ -140,19 +195,22 @@ class DiscreteModel(ABC):
     def acceleration(
         self, theta: np.ndarray, theta_t: np.ndarray, lam: float, lam_dot: float
     ) -> np.ndarray:
-        """Theta_tt at one instant (the time stepper's right-hand side).
+        """Theta_tt at one instant, from the equation of motion.
+
+        The time stepper's right-hand side: the equation of motion (`DiscreteModel`) with
+        M Theta_tt on the left, solved by one LU factorisation of M.
 
         Parameters
         ----------
         theta, theta_t : numpy.ndarray
-            Angles and their rates, shape (n,).
+            Angles [rad] and their rates (units of 1/T), shape (n,).
         lam, lam_dot : float
-            Rotation rate and its rate of change.
+            Rotation rate Omega T and its rate of change, dimensionless.
 
         Returns
         -------
         numpy.ndarray
-            Theta_tt, shape (n,).
+            Theta_tt (units of 1/T^2), shape (n,).
         """
         M, B = (a[0] for a in self.inertia_rows(theta[None]))
         L = self.load_torque_rows(theta[None], [lam], [lam_dot])[0]
@@ -173,14 +231,18 @@ class DiscreteModel(ABC):
         self, theta: np.ndarray, theta_t: np.ndarray, lam: np.ndarray, lam_dot: np.ndarray
     ) -> tuple[np.ndarray, np.ndarray]:
         """The first-order right-hand side (Theta_t, Theta_tt) and its exact Jacobian at m
-        instants at once (the Floquet monodromy needs them at every step).
+        instants at once.
+
+        Collocation, the implicit steppers and the Floquet monodromy need both at every step;
+        the Jacobian follows from the identities of `inertia_rows` and the loads' own Jacobian
+        (docs/model.md, "The model contract").
 
         Parameters
         ----------
         theta, theta_t : numpy.ndarray
-            Angles and rates, shape (m, n).
+            Angles [rad] and rates (units of 1/T), shape (m, n).
         lam, lam_dot : numpy.ndarray
-            Shape (m,).
+            Omega T and its rate of change at the m instants, shape (m,).
 
         Returns
         -------
@@ -226,7 +288,20 @@ class DiscreteModel(ABC):
     def first_order_jacobian(
         self, theta: np.ndarray, theta_t: np.ndarray, lam: float, lam_dot: float
     ) -> np.ndarray:
-        """`first_order_rows`' Jacobian at one instant, shape (2 n, 2 n)."""
+        """`first_order_rows`' Jacobian at one instant.
+
+        Parameters
+        ----------
+        theta, theta_t : numpy.ndarray
+            Angles [rad] and rates (units of 1/T), shape (n,).
+        lam, lam_dot : float
+            Omega T and its rate of change.
+
+        Returns
+        -------
+        numpy.ndarray
+            d(Theta_t, Theta_tt)/d(Theta, Theta_t), shape (2 n, 2 n).
+        """
         return self.first_order_rows(theta[None], theta_t[None], [lam], [lam_dot])[1][0]
 
     # --- the static problem ---------------------------------------------------------------------
@@ -235,19 +310,21 @@ class DiscreteModel(ABC):
     ) -> np.ndarray | tuple[np.ndarray, np.ndarray]:
         """Residual K Theta + L of the static equations at m instants, and its Jacobian.
 
+        The quasi-static response is its root at every instant (time derivatives zero).
+
         Parameters
         ----------
         theta : numpy.ndarray
-            Angles, shape (m, n).
+            Angles [rad], shape (m, n).
         lam, lam_dot : numpy.ndarray
-            Shape (m,).
+            Omega T and its rate of change at the m instants, shape (m,).
         jacobian : bool
             Also return K + dL/dTheta, shape (m, n, n).
 
         Returns
         -------
         numpy.ndarray or tuple
-            The residual (m, n), and with `jacobian` the Jacobians.
+            The residual (m, n), dimensionless torques; with `jacobian`, (residual, Jacobians).
         """
         K = self.stiffness
         if not jacobian:
@@ -258,6 +335,15 @@ class DiscreteModel(ABC):
 
     def linear_operators(self, lam: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """The model linearised about the straight beam turning steadily at `lam`.
+
+        Small vibrations obey mass Theta_tt + eta Md Theta_t + stiffness Theta = -euler lam_dot
+        (the gyroscopic terms vanish on the straight beam): the natural frequencies and the
+        linear forced response (`rotbeam.model.modes`) come from these.
+
+        Parameters
+        ----------
+        lam : float
+            Omega T, dimensionless.
 
         Returns
         -------
@@ -273,16 +359,46 @@ class DiscreteModel(ABC):
         return mass, stiffness, self.euler_load_vector()
 
     def euler_load_vector(self) -> np.ndarray:
-        """dL/d(lam_dot) at Theta = 0 (L is linear in lam_dot), shape (n,)."""
+        """The load per unit angular acceleration on the straight beam, dL/d(lam_dot) at Theta = 0.
+
+        L is linear in lam_dot, so two evaluations of the loads give it.
+
+        Returns
+        -------
+        numpy.ndarray
+            Shape (n,), dimensionless (zero with the Euler load off).
+        """
         zero = np.zeros((1, self.n))
         unit = self.load_torque_rows(zero, [0.0], [1.0])[0]
         return unit - self.load_torque_rows(zero, [0.0], [0.0])[0]
 
     # --- outputs --------------------------------------------------------------------------------
     def midspan(self, theta: np.ndarray) -> np.ndarray:
-        """y_m / L from Theta, shape (n,) or (n, m) (`Grid.midspan`)."""
+        """The midspan deflection y_m = y(s = 1/2), the paper's output (`Grid.midspan`).
+
+        Parameters
+        ----------
+        theta : numpy.ndarray
+            Angles [rad], shape (n,) or (n, m).
+
+        Returns
+        -------
+        numpy.ndarray
+            y_m in units of L: a scalar array or shape (m,).
+        """
         return self.grid.midspan(theta)
 
     def tip(self, theta: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """Tip position (x, y) / L relative to the clamp (`Grid.tip`)."""
+        """The tip position relative to the clamp (`Grid.tip`).
+
+        Parameters
+        ----------
+        theta : numpy.ndarray
+            Angles [rad], shape (n,) or (n, m).
+
+        Returns
+        -------
+        x, y : numpy.ndarray
+            In units of L, along and across the clamp's direction: scalar arrays or shape (m,).
+        """
         return self.grid.tip(theta)

@@ -1,4 +1,9 @@
-"""The RMS criterion of Sec. 5: RMS (Eq. RMS), Delta RMS (Eq. Delta_RMS), spectra, f_d*."""
+"""The RMS criterion of Sec. 5: RMS (Eq. RMS), Delta RMS (Eq. Delta_RMS), spectra, f_d*.
+
+Quasi-static is good enough where Delta RMS = |RMS_dyn - RMS_QS| / RMS_dyn of the midspan
+deflection stays below a threshold; f_d* is where it first reaches it along a line of drive
+frequencies.
+"""
 
 from __future__ import annotations
 
@@ -11,7 +16,23 @@ from ..config.checks import check_threshold
 
 
 def rms(y: np.ndarray) -> float:
-    """Root mean square of uniformly sampled values (Eq. RMS)."""
+    """Root mean square of uniformly sampled values (Eq. RMS).
+
+    Parameters
+    ----------
+    y : numpy.ndarray
+        Samples over whole periods, any shape (y_m in units of L, in rotbeam).
+
+    Returns
+    -------
+    float
+        sqrt(mean(y^2)), in the unit of `y`.
+
+    Raises
+    ------
+    ValueError
+        For an empty series.
+    """
     y = np.asarray(y, dtype=float)
     if y.size == 0:
         raise ValueError("rms of an empty series")
@@ -19,15 +40,40 @@ def rms(y: np.ndarray) -> float:
 
 
 def delta_rms(rms_dynamic: float, rms_quasistatic: float) -> float:
-    """|RMS_dyn - RMS_QS| / RMS_dyn (Eq. Delta_RMS); 0 when both are zero (no load), inf when
-    only the dynamic one is."""
+    """|RMS_dyn - RMS_QS| / RMS_dyn (Eq. Delta_RMS): the paper's measure of inertia's share.
+
+    Parameters
+    ----------
+    rms_dynamic, rms_quasistatic : float
+        RMS of the dynamic and the quasi-static response, in one unit.
+
+    Returns
+    -------
+    float
+        Delta RMS, dimensionless; 0 when both are zero (no load), inf when only the dynamic
+        one is.
+    """
     if rms_dynamic == 0.0:
         return 0.0 if rms_quasistatic == 0.0 else float("inf")
     return abs(rms_dynamic - rms_quasistatic) / rms_dynamic
 
 
 def power_spectrum(tau: np.ndarray, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """One-sided |FFT(y)| of a uniformly sampled series; frequencies in cycles per unit of tau."""
+    """One-sided amplitude spectrum of a uniformly sampled series, its mean removed.
+
+    Parameters
+    ----------
+    tau : numpy.ndarray
+        Equispaced instants, shape (m,) (units of T, or seconds).
+    y : numpy.ndarray
+        Samples, shape (m,).
+
+    Returns
+    -------
+    freq, amp : numpy.ndarray
+        Frequencies in cycles per unit of `tau` and the amplitudes 2 |FFT(y)| / m (a sine of
+        amplitude A on a bin shows A), shape (m // 2 + 1,) each.
+    """
     tau = np.asarray(tau, dtype=float)
     y = np.asarray(y, dtype=float)
     dt = float(tau[1] - tau[0])
@@ -56,7 +102,33 @@ def first_crossing(
     """Bracket the first crossing of `values` >= threshold on a scan; optionally refine it.
 
     With `refine` (a function x -> Delta RMS) the root of refine(x) - threshold is found with
-    Brent's method inside the bracket; without it the root is interpolated linearly.
+    Brent's method inside the bracket; without it the root is interpolated linearly.  Points
+    that are not finite never count as a crossing.
+
+    Parameters
+    ----------
+    xs : numpy.ndarray
+        The scanned values (drive frequencies), increasing, shape (m,).
+    values : numpy.ndarray
+        Delta RMS at them, dimensionless, shape (m,).
+    threshold : float
+        The Delta RMS threshold, in (0, 1).
+    refine : callable or None
+        x -> Delta RMS, evaluated inside the bracket.
+    xtol : float
+        Brent's absolute tolerance in x.
+
+    Returns
+    -------
+    Crossing
+        The first scanned point at or above the threshold (the paper's rule), the refined or
+        interpolated root (NaN when the first point is already above), the bracket and how it
+        was found; ``found = False`` when no point reaches the threshold.
+
+    Raises
+    ------
+    RotbeamInputError
+        If `threshold` is not in (0, 1).
     """
     threshold = check_threshold(threshold)
     xs = np.asarray(xs, dtype=float)
@@ -89,6 +161,26 @@ def critical_from_scan(f_ds: np.ndarray, delta: np.ndarray, threshold: float) ->
 
     The root is found on the interpolant, not by new simulations, so that a new threshold costs
     no simulation.  Failed points (NaN) are dropped and counted.
+
+    Parameters
+    ----------
+    f_ds : numpy.ndarray
+        Scanned drive frequencies [Hz], shape (m,), any order.
+    delta : numpy.ndarray
+        Delta RMS at them, dimensionless, shape (m,); NaN for a failed point.
+    threshold : float
+        The Delta RMS threshold, in (0, 1).
+
+    Returns
+    -------
+    dict
+        ``threshold``, ``points_used``, ``points_failed``, ``f_d_grid`` and ``f_d_root`` [Hz]
+        (NaN when not found), ``found`` and ``message``.
+
+    Raises
+    ------
+    RotbeamInputError
+        If `threshold` is not in (0, 1).
     """
     from scipy.interpolate import PchipInterpolator
     from scipy.optimize import brentq

@@ -1,5 +1,10 @@
-"""How the disk turns, in the model's units: lam(tau) = Omega(t) T and its rate lam_dot, for a
-sum of harmonics (a sampled period becomes one) or a single move (docs/model.md, "Drives")."""
+"""How the disk turns, in the model's units: lam(tau) = Omega(t) T and its rate lam_dot.
+
+A sum of harmonics (`HarmonicLaw`; a sampled period becomes one by its trigonometric
+interpolant) or a single move (`MoveLaw`, a cubic spline).  Time is in units of
+T = sqrt(rho A L^4 / (E I)), so lam_dot = (dOmega/dt) T^2 is what the Euler load scales with.
+Why these interpolants, and what noise in a logged profile does: docs/model.md, "Drives".
+"""
 
 from __future__ import annotations
 
@@ -18,6 +23,11 @@ DENSE = 4096
 class DriveLaw(ABC):
     """lam(tau) = Omega T of a drive, tau = t / T, and what the solvers read off it.
 
+    The solvers read the drive only through `lam` and `lam_dot` (and, for the linear start
+    and the surrogate, `coefficients`); the extremes and means set C_max, E_max and the
+    rotation that stretches the beam.  Subclasses give `lam`, `lam_dot`, `with_omega` and
+    `scaled`; the rest is computed from DENSE samples unless a subclass knows it exactly.
+
     Attributes
     ----------
     omega : float
@@ -32,19 +42,63 @@ class DriveLaw(ABC):
 
     @abstractmethod
     def lam(self, tau: float) -> float:
-        """Omega T at the instant tau."""
+        """The rotation rate at one instant.
+
+        Parameters
+        ----------
+        tau : float
+            Time in units of T.
+
+        Returns
+        -------
+        float
+            lam = Omega T, dimensionless.
+        """
 
     @abstractmethod
     def lam_dot(self, tau: float) -> float:
-        """d lam / d tau = Omega-dot T^2 at the instant tau."""
+        """The rate of change of lam at one instant (what the Euler load scales with).
+
+        Parameters
+        ----------
+        tau : float
+            Time in units of T.
+
+        Returns
+        -------
+        float
+            d lam / d tau = (dOmega/dt) T^2, dimensionless.
+        """
 
     @abstractmethod
     def with_omega(self, omega: float) -> DriveLaw:
-        """The same profile repeated at another rate (a new 2 pi / period)."""
+        """The same profile repeated at another rate (a sweep in f_d changes only this).
+
+        Parameters
+        ----------
+        omega : float
+            The new 2 pi / period, dimensionless (2 pi f_d T).
+
+        Returns
+        -------
+        DriveLaw
+        """
 
     @abstractmethod
     def scaled(self, factor: float) -> DriveLaw:
-        """lam0 + factor (lam - lam0): the profile's swing scaled, its mean kept."""
+        """lam0 + factor (lam - lam0): the profile's swing scaled, its mean kept.
+
+        Continuation in the drive's amplitude uses it.
+
+        Parameters
+        ----------
+        factor : float
+            Scale of the swing, dimensionless.
+
+        Returns
+        -------
+        DriveLaw
+        """
 
     @property
     def period(self) -> float:
@@ -52,7 +106,15 @@ class DriveLaw(ABC):
         return 2.0 * math.pi / self.omega
 
     def dense(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """tau, lam, lam_dot at DENSE equispaced instants of one period (or of the move)."""
+        """The law sampled at DENSE equispaced instants of one period (or of the move).
+
+        The extremes, means and spectra of a law that does not know them exactly.
+
+        Returns
+        -------
+        tau, lam, lam_dot : numpy.ndarray
+            Instants (units of T) from 0, and lam, lam_dot there; shape (DENSE,) each.
+        """
         tau = np.arange(DENSE) * (self.period / DENSE)
         lam = np.array([self.lam(t) for t in tau])
         return tau, lam, np.array([self.lam_dot(t) for t in tau])
@@ -85,6 +147,8 @@ class DriveLaw(ABC):
     def coefficients(self, K: int) -> np.ndarray:
         """c_0..c_K with lam(tau) = Re sum_k c_k exp(i k omega tau) (harmonics above K dropped).
 
+        By FFT of the DENSE samples of one period.
+
         Parameters
         ----------
         K : int
@@ -93,7 +157,7 @@ class DriveLaw(ABC):
         Returns
         -------
         numpy.ndarray
-            Complex, shape (K + 1,).
+            Complex, dimensionless, shape (K + 1,).
         """
         c = np.fft.rfft(self.dense()[1]) / DENSE
         c[1:] *= 2.0
@@ -104,14 +168,18 @@ class DriveLaw(ABC):
 class HarmonicLaw(DriveLaw):
     """lam = lam0 + sum_k alpha_k sin(k omega tau + phase_k): a sum of harmonics.
 
+    The paper's sine (one term, k = 1), a drive given by its harmonics and the trigonometric
+    interpolant of a sampled period; lam_dot, the means and the Fourier coefficients are
+    exact.
+
     Parameters
     ----------
     lam0 : float
-        Mean rotation Omega_0 T.
+        Mean rotation Omega_0 T, dimensionless.
     terms : tuple of (int, float, float)
         (k, alpha_k = a_k T, phase_k [rad]), distinct k >= 1.
     omega : float
-        2 pi f_d T.
+        2 pi f_d T, dimensionless.
     """
 
     lam0: float
@@ -119,25 +187,67 @@ class HarmonicLaw(DriveLaw):
     omega: float
 
     def lam(self, tau: float) -> float:
-        """Omega T at the instant tau."""
+        """The rotation rate at one instant.
+
+        Parameters
+        ----------
+        tau : float
+            Time in units of T.
+
+        Returns
+        -------
+        float
+            lam = Omega T, dimensionless.
+        """
         out = self.lam0
         for k, a, ph in self.terms:
             out = out + a * math.sin(k * self.omega * tau + ph)
         return out
 
     def lam_dot(self, tau: float) -> float:
-        """d lam / d tau at the instant tau."""
+        """The rate of change of lam at one instant, sum_k alpha_k k omega cos(k omega tau + ph_k).
+
+        Parameters
+        ----------
+        tau : float
+            Time in units of T.
+
+        Returns
+        -------
+        float
+            d lam / d tau, dimensionless.
+        """
         out = 0.0
         for k, a, ph in self.terms:
             out = out + a * (k * self.omega) * math.cos(k * self.omega * tau + ph)
         return out
 
     def with_omega(self, omega: float) -> HarmonicLaw:
-        """The same harmonics at another repetition rate."""
+        """The same harmonics at another repetition rate.
+
+        Parameters
+        ----------
+        omega : float
+            2 pi f_d T, dimensionless.
+
+        Returns
+        -------
+        HarmonicLaw
+        """
         return replace(self, omega=omega)
 
     def scaled(self, factor: float) -> HarmonicLaw:
-        """Every harmonic's amplitude times `factor`."""
+        """Every harmonic's amplitude times `factor`, the mean kept.
+
+        Parameters
+        ----------
+        factor : float
+            Scale of the swing, dimensionless.
+
+        Returns
+        -------
+        HarmonicLaw
+        """
         return replace(self, terms=tuple((k, a * factor, ph) for k, a, ph in self.terms))
 
     @property
@@ -181,7 +291,18 @@ class HarmonicLaw(DriveLaw):
         return float(np.max(np.abs(self.dense()[2])))
 
     def coefficients(self, K: int) -> np.ndarray:
-        """c_0 = lam0, c_k = -i alpha_k exp(i phase_k) (exact, no sampling)."""
+        """c_0 = lam0, c_k = -i alpha_k exp(i phase_k): exact, no sampling.
+
+        Parameters
+        ----------
+        K : int
+            Highest harmonic kept (terms above it are dropped).
+
+        Returns
+        -------
+        numpy.ndarray
+            Complex, dimensionless, shape (K + 1,).
+        """
         c = np.zeros(K + 1, dtype=complex)
         c[0] = self.lam0
         for k, a, ph in self.terms:
@@ -200,16 +321,17 @@ def harmonics_of_samples(
     """The trigonometric interpolant of one sampled period, as a mean and harmonics.
 
     Samples at unequal phases are first resampled at as many equal ones by a periodic cubic
-    spline.  The interpolant is smooth (it is a sum of sines), passes through the samples and
-    is exact for a band-limited profile (a sampled sine is the sine); noise in the samples
-    reaches the rate lam_dot multiplied by the harmonic's number, hence `keep`.
+    spline.  The interpolant is smooth (it is a sum of sines) and exact for a band-limited
+    profile (a sampled sine is the sine); with every harmonic kept (at most 2 `keep` samples) it
+    passes through the samples.  Noise in the samples reaches the rate lam_dot multiplied by
+    the harmonic's number, hence `keep`, a low-pass (docs/model.md, "Drives").
 
     Parameters
     ----------
     phase : tuple of float
         Increasing phases in [0, 1).
     values : tuple of float
-        The profile at them.
+        The profile at them (any unit; the harmonics' amplitudes and the mean come in it).
     keep : int or None
         The highest harmonic kept (default PROFILE_HARMONICS, at most half the samples).
 
@@ -241,8 +363,12 @@ def harmonics_of_samples(
 
 @dataclass(frozen=True)
 class MoveLaw(DriveLaw):
-    """lam through the samples of a single move by a cubic spline (not-a-knot: fourth order,
-    lam_dot continuous and smooth), constant before and after the move.
+    """lam through the samples of a single move by a cubic spline, constant before and after it.
+
+    The spline is not-a-knot: fourth order, lam_dot continuous.  Its slope is the Euler load:
+    PCHIP's shape-preserving slopes put the residual vibration of a 61-sample move 7 % off,
+    the spline 0.1 % (docs/model.md, "Drives").  `omega` is 2 pi over the duration and
+    `periodic` is False.
 
     Parameters
     ----------
@@ -274,22 +400,71 @@ class MoveLaw(DriveLaw):
         return self.tau[-1] - self.tau[0]
 
     def lam(self, tau: float) -> float:
-        """Omega T at the instant tau (the end values outside the move)."""
+        """The rotation rate at one instant (the end values outside the move).
+
+        Parameters
+        ----------
+        tau : float
+            Time in units of T from the move's first sample.
+
+        Returns
+        -------
+        float
+            lam = Omega T, dimensionless.
+        """
         t = min(max(tau, self.tau[0]), self.tau[-1])
         return float(self._curve[0](t))
 
     def lam_dot(self, tau: float) -> float:
-        """d lam / d tau at the instant tau (0 outside the move)."""
+        """The rate of change of lam at one instant (0 outside the move).
+
+        Parameters
+        ----------
+        tau : float
+            Time in units of T from the move's first sample.
+
+        Returns
+        -------
+        float
+            d lam / d tau, dimensionless.
+        """
         if not self.tau[0] <= tau <= self.tau[-1]:
             return 0.0
         return float(self._curve[1](tau))
 
     def with_omega(self, omega: float) -> MoveLaw:
-        """A move is not repeated: it has no rate to change."""
+        """A move is not repeated: it has no rate to change.
+
+        Parameters
+        ----------
+        omega : float
+            Not read.
+
+        Returns
+        -------
+        MoveLaw
+            Never: it raises.
+
+        Raises
+        ------
+        ValueError
+            Always.
+        """
         raise ValueError("a single move has no repetition rate")
 
     def scaled(self, factor: float) -> MoveLaw:
-        """The move's swing about its mean times `factor`."""
+        """The move's swing about its mean times `factor`.
+
+        Parameters
+        ----------
+        factor : float
+            Scale of the swing, dimensionless.
+
+        Returns
+        -------
+        MoveLaw
+            Through the scaled samples.
+        """
         m = self.mean
         return MoveLaw(self.tau, tuple(m + factor * (v - m) for v in self.values))
 
@@ -302,10 +477,13 @@ PROFILE_SHAPES = {"trapezoid": ("omega_min", "omega_max", "ramp"),
 def profile_samples(
     shape: str, omega_min: float, omega_max: float, ramp: float, samples: int = 512
 ) -> tuple[tuple[float, ...], tuple[float, ...]]:
-    """One period of a named velocity profile: from omega_min up to omega_max in a `ramp`
-    fraction of the period, held, down again in another `ramp`, held; "trapezoid" ramps
-    linearly (piecewise constant acceleration), "s-curve" by 3 x^2 - 2 x^3 (the acceleration
-    itself ramps: no jerk spikes).
+    """One period of a named velocity profile, sampled.
+
+    From omega_min up to omega_max in a `ramp` fraction of the period, held, down again from
+    phase 1/2 in another `ramp`, held; "trapezoid" ramps linearly (piecewise constant
+    acceleration), "s-curve" by 3 x^2 - 2 x^3 (the acceleration itself ramps: no jerk spikes).
+    The samples go the way of a sampled period (`harmonics_of_samples`); a trapezoid's corners
+    leave slowly decaying harmonics (docs/model.md, "Drives").
 
     Parameters
     ----------

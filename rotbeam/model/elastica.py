@@ -1,5 +1,9 @@
-"""The discrete rotating elastica: Appendix A of the paper, re-derived (docs/model.md, "The
-discrete model", lists the departures from the printed appendix)."""
+"""The discrete rotating elastica: Appendix A of the paper, re-derived, as a `DiscreteModel`.
+
+The grid, the quadratures and the derivation of M, B, K and the loads: docs/model.md, "The
+discrete model", which lists the departures from the printed appendix; the payload: "A payload
+at the tip".
+"""
 
 from __future__ import annotations
 
@@ -16,12 +20,23 @@ from .params import Dimensionless
 class DiscreteElastica(DiscreteModel):
     """The rotating elastica on an N-interval grid: loads, exact Jacobians, mass matrices.
 
+    The model every run of rotbeam uses: M = W cos, B = W sin with W = Q P, the bending
+    stiffness K and the centrifugal, softening and Euler loads summed by the tension quadrature,
+    all in units of EI/L^2 with time in units of T.  With `extension` the grid is the stretched
+    one; with a payload Q carries the tip mass and the last angle's row its rotary inertia.
+
     Parameters
     ----------
     dl : Dimensionless
-        The scene (groups, effects, drive).
+        The scene (groups, effects, drive, payload).
     N : int
         Grid intervals; the model has n = N - 1 angles.
+
+    Raises
+    ------
+    RotbeamInputError
+        For N out of range, `extension` together with a payload (not modelled), `extension`
+        without kappa > 0, or a rotation too fast for a stretched equilibrium.
     """
 
     def __init__(self, dl: Dimensionless, N: int) -> None:
@@ -50,7 +65,18 @@ class DiscreteElastica(DiscreteModel):
         self.rotary = dl.tip_inertia / self.grid.ds
 
     def at(self, dl: Dimensionless) -> DiscreteElastica:
-        """The model of scene `dl` on the same grid."""
+        """The model of another scene on the same grid size.
+
+        Parameters
+        ----------
+        dl : Dimensionless
+            The scene.
+
+        Returns
+        -------
+        DiscreteElastica
+            The model of `dl` with the same N.
+        """
         return DiscreteElastica(dl, self.N)
 
     @property
@@ -59,16 +85,40 @@ class DiscreteElastica(DiscreteModel):
         return self.grid.K
 
     def inertia_rows(self, theta: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """M_ij = W_ij cos(theta_i - theta_j) and B_ij = W_ij sin(theta_i - theta_j) at m
-        instants, W = Q P; theta (m, n) -> two (m, n, n) arrays."""
+        """M_ij = W_ij cos(theta_i - theta_j) and B_ij = W_ij sin(theta_i - theta_j) at m instants.
+
+        W = Q P; a payload's rotary inertia j / ds adds to M's last diagonal entry.
+
+        Parameters
+        ----------
+        theta : numpy.ndarray
+            Angles [rad], shape (m, n).
+
+        Returns
+        -------
+        M, B : numpy.ndarray
+            Shape (m, n, n) each, dimensionless.
+        """
         M, B = self._cos_sin_rows(theta, self.grid.W)
         if self.rotary:
             M[:, -1, -1] += self.rotary
         return M, B
 
     def damping_rows(self, theta: np.ndarray) -> tuple[np.ndarray, np.ndarray] | None:
-        """With a payload, the beam's own M and B (W without the tip mass): the damping stays
-        per unit length of the beam.  None without one (eta M)."""
+        """With a tip mass, the beam's own M and B, W without the payload: the damping stays per
+        unit length of the beam.
+
+        Parameters
+        ----------
+        theta : numpy.ndarray
+            Angles [rad], shape (m, n).
+
+        Returns
+        -------
+        tuple of numpy.ndarray or None
+            (Md, Bd), shape (m, n, n) each, with a tip mass; None without one (eta M, which
+            holds a rotary inertia j / ds if there is one).
+        """
         if self.grid.W_beam is None:
             return None
         return self._cos_sin_rows(theta, self.grid.W_beam)
@@ -82,8 +132,16 @@ class DiscreteElastica(DiscreteModel):
         return M, B
 
     def euler_load_vector(self) -> np.ndarray:
-        """dL/d(lam_dot) at Theta = 0: Q (r_o + s), the straight beam's lever arm summed by the
-        tension quadrature (zero with the Euler load off), shape (n,)."""
+        """dL/d(lam_dot) at Theta = 0, in closed form: the straight beam's lever arm summed by Q.
+
+        Q (r_o + s) (the stretched positions with `extension`), plus a payload's rotary inertia
+        on the last row.
+
+        Returns
+        -------
+        numpy.ndarray
+            Shape (n,), dimensionless (zero with the Euler load off).
+        """
         g = self.grid
         if not self.effects.euler:
             return np.zeros(self.n)
@@ -116,19 +174,22 @@ class DiscreteElastica(DiscreteModel):
     ) -> np.ndarray | tuple[np.ndarray, np.ndarray]:
         """L = sin Theta * Q F_x - cos Theta * Q F_y at m instants, and dL/dTheta (exact).
 
+        F holds the load parts of the nodal forces only (centrifugal, softening, Euler); the
+        payload's rotary inertia adds j / ds lam_dot to the last row with the Euler load on.
+
         Parameters
         ----------
         theta : numpy.ndarray
-            Angles, shape (m, n).
+            Angles [rad], shape (m, n).
         lam, lam_dot : numpy.ndarray
-            Shape (m,).
+            Omega T and its rate of change at the m instants, shape (m,).
         jacobian : bool
             Also return the Jacobians, shape (m, n, n).
 
         Returns
         -------
         numpy.ndarray or tuple
-            L (m, n), and with `jacobian` (L, dL/dTheta).
+            L (m, n), dimensionless torques; with `jacobian`, (L, dL/dTheta).
         """
         g, ef = self.grid, self.effects
         lam, lam_dot = np.asarray(lam, dtype=float), np.asarray(lam_dot, dtype=float)
@@ -159,15 +220,26 @@ class DiscreteElastica(DiscreteModel):
         J[:, idx, idx] += c * nx + s * ny
         return torque, J
 
-    def tension(self, theta, theta_t, theta_tt, lam, lam_dot) -> tuple[np.ndarray, np.ndarray]:
+    def tension(
+        self,
+        theta: np.ndarray,
+        theta_t: np.ndarray,
+        theta_tt: np.ndarray,
+        lam: float,
+        lam_dot: float,
+    ) -> tuple[np.ndarray, np.ndarray]:
         """Internal force n_x, n_y at nodes 1..N-1 at one instant (a diagnostic).
+
+        n = Q g with g = F - r_tt - eta r_t (+ Coriolis), the rotating frame's components;
+        the tests check the straight beam's centrifugal tension and the extension's strain
+        with it.
 
         Parameters
         ----------
         theta, theta_t, theta_tt : numpy.ndarray
-            Angles and their first two time derivatives, shape (n,).
+            Angles [rad] and their first two time derivatives (units of 1/T, 1/T^2), shape (n,).
         lam, lam_dot : float
-            Rotation rate and its rate of change.
+            Rotation rate Omega T and its rate of change, dimensionless.
 
         Returns
         -------

@@ -13,18 +13,57 @@ from ..config.parameters import check_value
 
 
 def check_N(N: int) -> int:
-    """The number of grid intervals, checked against the registry (numerics.N)."""
+    """The number of grid intervals, checked against the registry (numerics.N).
+
+    Parameters
+    ----------
+    N : int
+        Grid intervals.
+
+    Returns
+    -------
+    int
+        N as an int.
+
+    Raises
+    ------
+    RotbeamInputError
+        If N is not an integer in the registry's range.
+    """
     return check_value("numerics", "N", N)
 
 
-def centrifugal_strain(s, hub_ratio: float, kappa: float, lam: float) -> np.ndarray:
+def centrifugal_strain(
+    s: np.ndarray | float, hub_ratio: float, kappa: float, lam: float
+) -> np.ndarray:
     """Axial strain eps(s) of the straight extensible beam spinning steadily at lam, exact.
 
-    n' = -lam^2 (r_o + x), x' = 1 + eps, eps = kappa n, n(1) = 0, x(0) = 0 give
-    n'' + k^2 n = -lam^2 with k = |lam| sqrt(kappa), whose solution is
-    1 + eps = [cos(k s) + k r_o sin(k (1 - s))] / cos(k), written below without cancellation;
-    eps = kappa lam^2 [r_o (1 - s) + (1 - s^2)/2] (1 + O(k^2)).  No tensile equilibrium for
-    k >= pi/2 (the stretch runs away).
+    The `extension` effect stretches the grid by it.  n' = -lam^2 (r_o + x), x' = 1 + eps,
+    eps = kappa n, n(1) = 0, x(0) = 0 give n'' + k^2 n = -lam^2 with k = |lam| sqrt(kappa), whose
+    solution is 1 + eps = [cos(k s) + k r_o sin(k (1 - s))] / cos(k), evaluated without
+    cancellation; eps = kappa lam^2 [r_o (1 - s) + (1 - s^2)/2] (1 + O(k^2)) (docs/model.md,
+    "Axial stretching").
+
+    Parameters
+    ----------
+    s : numpy.ndarray or float
+        Reference arc length in units of L, in [0, 1], any shape.
+    hub_ratio : float
+        r_o = R_o / L, dimensionless.
+    kappa : float
+        EI / (EA L^2) = (h/L)^2 / 12, dimensionless.
+    lam : float
+        The steady rotation Omega T that stretches the beam, dimensionless.
+
+    Returns
+    -------
+    numpy.ndarray
+        eps(s), dimensionless, the shape of `s`.
+
+    Raises
+    ------
+    RotbeamInputError
+        For k >= pi/2: no tensile equilibrium (the stretch runs away).
     """
     k = abs(float(lam)) * math.sqrt(kappa)
     if not k < 0.5 * math.pi:
@@ -39,7 +78,13 @@ def centrifugal_strain(s, hub_ratio: float, kappa: float, lam: float) -> np.ndar
 
 @dataclass(frozen=True)
 class Grid:
-    """Operators of the N-interval grid (built once, reused for every evaluation)."""
+    """Operators of the N-interval grid (built once, reused for every evaluation).
+
+    Nodes s_i = i / N; the angles Theta sit at nodes 1..N-1 (theta_0 = 0 at the clamp,
+    theta_N = theta_{N-1} at the free end).  P and Q are the trapezoid quadratures of the
+    positions and of the tension, K the bending stiffness; build it with `build`
+    (docs/model.md, "The discrete model").
+    """
 
     N: int
     ds: float
@@ -72,6 +117,13 @@ class Grid:
         Returns
         -------
         Grid
+
+        Raises
+        ------
+        RotbeamInputError
+            If N is out of range.
+        ValueError
+            If `strain` does not have shape (N + 1,).
         """
         N = check_N(N)
         n = N - 1
@@ -112,7 +164,18 @@ class Grid:
                    Q_beam=Q_beam, W_beam=W_beam)  # fmt: skip
 
     def positions(self, theta: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """x, y at nodes 1..N (relative to the clamp); theta has shape (N-1,) or (N-1, m)."""
+        """Node positions from the angles, by the trapezoid quadrature P.
+
+        Parameters
+        ----------
+        theta : numpy.ndarray
+            Angles [rad] at nodes 1..N-1, shape (N-1,) or (N-1, m).
+
+        Returns
+        -------
+        x, y : numpy.ndarray
+            At nodes 1..N relative to the clamp, in units of L, shape (N,) or (N, m).
+        """
         x = self.x0 + self.P @ np.cos(theta)
         y = self.P @ np.sin(theta)
         return x, y
@@ -134,11 +197,33 @@ class Grid:
         return self.at_midspan(y)
 
     def midspan_rate(self, theta: np.ndarray, theta_t: np.ndarray) -> np.ndarray:
-        """dy_m/dtau from Theta and Theta_t (N-1,) or (N-1, m), interpolated as `midspan`."""
+        """The midspan velocity dy_m/dtau, interpolated as `midspan`.
+
+        Parameters
+        ----------
+        theta, theta_t : numpy.ndarray
+            Angles [rad] and their rates (units of 1/T), shape (N-1,) or (N-1, m).
+
+        Returns
+        -------
+        numpy.ndarray
+            dy_m/dtau in units of L/T: a scalar array or shape (m,).
+        """
         return self.at_midspan(self.P @ (np.cos(theta) * theta_t))
 
     def at_midspan(self, nodal: np.ndarray) -> np.ndarray:
-        """A nodal quantity (rows: nodes 1..N) at s = 1/2 (linear interpolation for odd N)."""
+        """A nodal quantity at s = 1/2: the node's value for even N, linear interpolation for odd.
+
+        Parameters
+        ----------
+        nodal : numpy.ndarray
+            Values at nodes 1..N (rows), shape (N,) or (N, m).
+
+        Returns
+        -------
+        numpy.ndarray
+            The value at s = 1/2: a scalar array or shape (m,).
+        """
         if self.mid >= 0:
             return nodal[self.mid]
         i = self.N // 2  # node i at s_i < 1/2 < s_{i+1}: rows i-1, i
@@ -146,12 +231,35 @@ class Grid:
         return (1 - w) * nodal[i - 1] + w * nodal[i]
 
     def tip(self, theta: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """x, y of the free end (node N) relative to the clamp, units of L."""
+        """The position of the free end (node N) relative to the clamp.
+
+        Parameters
+        ----------
+        theta : numpy.ndarray
+            Angles [rad], shape (N-1,) or (N-1, m).
+
+        Returns
+        -------
+        x, y : numpy.ndarray
+            In units of L: scalar arrays or shape (m,).
+        """
         x, y = self.positions(theta)
         return x[-1], y[-1]
 
     def full_shape(self, theta: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """s, x, y at all nodes 0..N (clamp included) for one Theta."""
+        """The whole centerline, clamp included, for one Theta (figures and animations).
+
+        Parameters
+        ----------
+        theta : numpy.ndarray
+            Angles [rad], shape (N-1,).
+
+        Returns
+        -------
+        s, x, y : numpy.ndarray
+            Reference arc length and position relative to the clamp at nodes 0..N, in units
+            of L, shape (N + 1,) each.
+        """
         x, y = self.positions(theta)
         return (
             np.concatenate([[0.0], self.s]),

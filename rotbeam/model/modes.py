@@ -1,5 +1,9 @@
 """Small vibrations about the straight beam turning steadily: natural frequencies and the
-harmonic response of the linearised model (docs/model.md, "Linear modes")."""
+harmonic response of the linearised model.
+
+The exact counterpart of the Southwell line, for any speed, hub ratio and payload; f_0 of the
+verdict and the periodic solver's linear start come from here (docs/model.md, "Linear modes").
+"""
 
 from __future__ import annotations
 
@@ -28,9 +32,9 @@ def steady_model(
     Parameters
     ----------
     lam : float
-        Omega T.
+        Omega T, dimensionless.
     hub_ratio : float
-        R_o / L.
+        R_o / L, dimensionless.
     N : int
         Grid intervals.
     softening : bool
@@ -38,11 +42,13 @@ def steady_model(
     slenderness : float or None
         h / L: the beam stretched by its centrifugal tension (`extension`), None: inextensible.
     tip_mass, tip_inertia : float
-        A payload, m / (rho A L) and J / (rho A L^3).
+        A payload, m / (rho A L) and J / (rho A L^3), dimensionless.
 
     Returns
     -------
     DiscreteElastica
+        With centrifugal loads (and softening if asked), the extension if `slenderness` is
+        given.
     """
     effects = Effects(centrifugal=True, softening=softening, euler=False, coriolis=False,
                       damping=False, extension=slenderness is not None)  # fmt: skip
@@ -55,19 +61,27 @@ def linear_frequencies(model: DiscreteModel, lam: float, n_modes: int = 1) -> np
     """Lowest `n_modes` natural frequencies w = omega T of `model` linearised about the straight
     beam turning steadily at `lam`, ascending.
 
+    The generalised eigenvalues of (K + dL/dTheta, M) at Theta = 0 (`linear_operators`).
+
     Parameters
     ----------
     model : DiscreteModel
         The model (its loads at lam_dot = 0 give the stiffness).
     lam : float
-        Omega T.
+        Omega T, dimensionless.
     n_modes : int
         How many, in [1, n].
 
     Returns
     -------
     numpy.ndarray
-        Shape (n_modes,).
+        Angular frequencies in units of 1/T, shape (n_modes,).
+
+    Raises
+    ------
+    RotbeamInputError
+        For `n_modes` out of range, or a negative squared frequency (the straight beam is
+        unstable at this speed).
     """
     if not (isinstance(n_modes, int) and 1 <= n_modes <= model.n):
         raise RotbeamInputError(f"number of modes must be in [1, N-1={model.n}], got {n_modes!r}")
@@ -90,12 +104,14 @@ def dimensionless_frequencies(
 ) -> np.ndarray:
     """Lowest `n_modes` natural frequencies w = omega T (ascending) at rotation lam = Omega T.
 
+    The convergence checks of the payload and the extension call this directly.
+
     Parameters
     ----------
     lam : float
-        Omega T.
+        Omega T, dimensionless.
     hub_ratio : float
-        R_o / L, >= 0.
+        R_o / L, dimensionless, >= 0.
     n_modes : int
         How many, in [1, N - 1].
     N : int
@@ -106,12 +122,18 @@ def dimensionless_frequencies(
         h / L: about the beam stretched by its centrifugal tension (extension); None:
         inextensible.
     tip_mass, tip_inertia : float
-        A payload, m / (rho A L) and J / (rho A L^3).
+        A payload, m / (rho A L) and J / (rho A L^3), dimensionless.
 
     Returns
     -------
     numpy.ndarray
-        Shape (n_modes,).
+        Angular frequencies in units of 1/T, shape (n_modes,).
+
+    Raises
+    ------
+    RotbeamInputError
+        For a lam that is not finite, a negative hub ratio, `n_modes` out of range, or an
+        unstable straight beam.
     """
     if not math.isfinite(lam):
         raise RotbeamInputError(f"lambda must be finite, got {lam!r}")
@@ -157,7 +179,8 @@ def linear_forced_response(model: DiscreteModel, K: int = 8) -> dict[int, np.nda
     """Steady response of the model linearised at its mean rotation to the drive's harmonics.
 
     lam_dot = Re sum_k d_k exp(i k omega tau) forces the linearised model with -d_k q (q the
-    Euler load per unit lam_dot): Theta_k = -(S - (k w)^2 M + i k w eta Md)^-1 d_k q.
+    Euler load per unit lam_dot): Theta_k = -(S - (k w)^2 M + i k w eta Md)^-1 d_k q, S the
+    linearised stiffness.  The periodic solver's linear start.
 
     Parameters
     ----------
@@ -169,7 +192,8 @@ def linear_forced_response(model: DiscreteModel, K: int = 8) -> dict[int, np.nda
     Returns
     -------
     dict
-        k -> complex amplitude Theta_k (n,), Theta(tau) = Re sum_k Theta_k exp(i k omega tau).
+        k -> complex amplitude Theta_k [rad], shape (n,):
+        Theta(tau) = Re sum_k Theta_k exp(i k omega tau).
     """
     dl = model.dl
     lam = dl.lam0 if dl.effects.centrifugal else 0.0

@@ -1,26 +1,11 @@
-"""Beam, drive and the dimensionless groups of the rotating cantilever.
+"""Beam, drive, effects and the dimensionless problem of the rotating cantilever.
 
-Nondimensionalisation (used everywhere in the package; see README "Dimensionless groups"):
-lengths by the beam length L, forces by EI/L^2, time by T = sqrt(rho A L^4 / (E I)).
-With tau = t / T the dimensionless equations of motion have unit inertia, and the whole problem is
-fixed by five numbers:
-
-    hub_ratio r_o = R_o / L = 1/delta - 1       (clamp distance from the axis over L)
-    eta  = gamma L^2 / sqrt(rho A E I)          (viscous damping, Eq. eta of the paper)
-    lam(tau) = Omega(t) T = lam0 + alpha sin(omega tau)
-    lam0 = Omega_0 T,  alpha = a T,  omega = 2 pi f_d T
-
-The paper's groups map onto these as follows (G = rho A R L^3/(E I), in s^2, Sec. 6):
-
-    C(tau) = G Omega^2 = lam^2 / delta                       (Eq. centrifugal_number)
-    E(tau) = G dOmega/dt = (dlam/dtau) / delta               (Eq. euler_number without f_s, as
-                                                              Eq. max E num: E_max = G a 2 pi f_d)
-    I(tau) = Omega T = lam                                   (Eq. inertial_number without 1/2pi)
-
-The printed Eqs. (euler_number) and (inertial_number) carry a factor f_s that would make them
-dimensional (Euler) or 2 pi smaller (inertial); with time scaled by T the factors above are the ones
-that make the printed Eqs. (EOM1-2) hold with unit inertia.  The centrifugal load C (1 - delta +
-delta x) equals lam^2 (r_o + x), which is the form the code uses (no 1/delta for tiny beams).
+`Beam`, `Drive` and `Effects` describe a scene in SI units; `Dimensionless` is the problem the
+model solves, with lengths in units of L, forces in units of EI/L^2 and time in units of
+T = sqrt(rho A L^4 / (E I)).  Five numbers fix it whatever the beam's size: the hub ratio r_o,
+the damping eta and the drive lam(tau) = Omega T (lam0, alpha, omega for the paper's sine).
+The groups, how the paper's C, E and I map onto them and why two printed factors differ:
+docs/model.md, "Dimensionless groups".
 """
 
 from __future__ import annotations
@@ -40,25 +25,35 @@ BETA1 = 1.8751040687119611
 
 
 def tip_loaded_root(mu: float, j: float) -> float:
-    """First root b of the cantilever's characteristic equation with a tip mass and inertia,
+    """First root b of the cantilever's characteristic equation with a tip mass and inertia.
+
+    The non-rotating beam with a payload at its free end vibrates first at b^2 / T, b the first
+    root of::
 
         1 + cos b cosh b + mu b (cos b sinh b - sin b cosh b)
-          - j b^3 (sin b cosh b + cos b sinh b) + mu j b^4 (1 - cos b cosh b) = 0,
+          - j b^3 (sin b cosh b + cos b sinh b) + mu j b^4 (1 - cos b cosh b) = 0
 
-    the first sign change below the bare root beta_1 (a payload lowers the first frequency),
-    then bisection.
+    (b = 1.4200 at mu = 0.5).  A payload lowers the first frequency, so the root is the first
+    sign change on a grid below the bare root beta_1, refined by bisection to round-off.  `Beam.f_n`
+    and the checks of the discrete model's payload read it (docs/model.md, "A payload at the
+    tip").
 
     Parameters
     ----------
     mu : float
-        m_tip / (rho A L), >= 0.
+        Tip mass m_tip / (rho A L), dimensionless, >= 0.
     j : float
-        J_tip / (rho A L^3), >= 0.
+        Tip rotary inertia J_tip / (rho A L^3), dimensionless, >= 0.
 
     Returns
     -------
     float
-        b, the first mode's frequency being b^2 sqrt(EI / (rho A L^4)).
+        b, dimensionless: the first mode's angular frequency is b^2 sqrt(EI / (rho A L^4)).
+
+    Raises
+    ------
+    RotbeamInputError
+        If the grid finds no sign change below beta_1 (a payload with mu, j >= 0 has one).
     """
 
     def f(b: float) -> float:
@@ -85,11 +80,18 @@ def tip_loaded_root(mu: float, j: float) -> float:
 
 @dataclass(frozen=True)
 class Beam:
-    """Rectangular elastic beam clamped on the disk (SI units).
+    """Rectangular elastic beam clamped on the disk, with an optional payload (SI units).
 
     Defaults are the paper's reference beam (Table 1) with R = 0.155 m (distance from the axis to
     the undeformed tip; not printed in the paper, inferred from the C and E ranges of Sec. 5) and
-    gamma = 0.039 N s/m^2 (App. B).
+    gamma = 0.039 N s/m^2 (App. B).  The properties give the derived scales: T, f_n, G, the hub
+    ratio and the damping groups.  Every field's range is the registry's
+    (`rotbeam.config.parameters`).
+
+    Raises
+    ------
+    RotbeamInputError
+        For a field outside its range, h >= L or R <= L.
     """
 
     L: float = default("beam", "L")  #: length [m]
@@ -127,10 +129,12 @@ class Beam:
 
     @property
     def EI(self) -> float:
+        """Bending stiffness E I [N m^2]."""
         return self.E * self.I
 
     @property
     def rhoA(self) -> float:
+        """Mass per unit length rho A [kg/m]."""
         return self.rho * self.A
 
     @property
@@ -166,6 +170,7 @@ class Beam:
 
     @property
     def delta(self) -> float:
+        """The paper's delta = L / R, dimensionless."""
         return self.L / self.R
 
     @property
@@ -184,7 +189,14 @@ class Beam:
         return self.eta / (2.0 * BETA1**2)
 
     def derived(self) -> dict[str, float]:
-        """Every derived group, for tables and JSON output."""
+        """Every derived group, for tables and JSON output.
+
+        Returns
+        -------
+        dict
+            ``A`` [m^2], ``I`` [m^4], ``T`` [s], ``f_s`` and ``f_n`` [Hz], ``G`` [s^2] and the
+            dimensionless ``delta``, ``hub_ratio``, ``eta``, ``zeta``.
+        """
         return {
             "A": self.A,
             "I": self.I,
@@ -203,14 +215,22 @@ class Beam:
 class Harmonic:
     """One harmonic of a periodic drive: amplitude sin(2 pi k f_d t + phase).
 
+    `Drive.harmonics` is a tuple of them, distinct in k; the sine drive is the single harmonic
+    k = 1.
+
     Parameters
     ----------
     k : int
         Harmonic number, >= 1.
     amplitude : float
-        [rad/s], >= 0.
+        Velocity amplitude a_k [rad/s], >= 0.
     phase : float
-        [rad].
+        Phase [rad].
+
+    Raises
+    ------
+    RotbeamInputError
+        For k not an integer >= 1, a negative amplitude or a phase that is not finite.
     """
 
     k: int
@@ -232,6 +252,10 @@ MIN_SAMPLES = 8
 class Samples:
     """Samples of the angular velocity: one period (x = phase in [0, 1)) or a move (x = t [s]).
 
+    What a CSV file or a named profile gives; `Drive.law` turns a period into its trigonometric
+    interpolant and a move into a cubic spline (docs/model.md, "Drives").  The samples are
+    checked here so that a bad file fails with one line naming it.
+
     Parameters
     ----------
     x : tuple of float
@@ -244,6 +268,14 @@ class Samples:
         Where the samples come from (a file name), for messages.
     keep : int or None
         A profile's highest harmonic kept (default `PROFILE_HARMONICS`): its low-pass.
+
+    Raises
+    ------
+    RotbeamInputError
+        For fewer than MIN_SAMPLES samples, values that are not finite, instants that do not
+        increase, phases outside [0, 1), a period that does not close on itself (its step from
+        the last sample back to the first more than twice its largest step inside) or a bad
+        `keep`.
     """
 
     x: tuple[float, ...]
@@ -306,7 +338,13 @@ class Drive:
     A periodic drive repeats at f_d: Omega_0 + a sin(2 pi f_d t) (the paper's), a sum of
     `harmonics` Omega_0 + sum_k a_k sin(2 pi k f_d t + phase_k), or a sampled `profile` of one
     period.  A `move` is a single run through sampled (t, Omega), followed by `settle` seconds
-    at its last speed.
+    at its last speed.  `law` gives the drive in the model's units (docs/model.md, "Drives").
+
+    Raises
+    ------
+    RotbeamInputError
+        For a field outside its range, repeated harmonics, more than one of harmonics, profile
+        and move, samples of the wrong kind or `settle` without a move.
     """
 
     omega0: float = default("drive", "omega0")  #: mean angular velocity Omega_0 [rad/s]
@@ -360,14 +398,18 @@ class Drive:
     def law(self, T: float) -> DriveLaw:
         """The drive in the model's units: lam(tau) = Omega(tau T) T.
 
+        A sine or harmonics become a `HarmonicLaw`, a sampled period the `HarmonicLaw` of its
+        trigonometric interpolant, a move a `MoveLaw` whose time starts at its first sample.
+
         Parameters
         ----------
         T : float
-            Time scale [s].
+            Time scale [s]; 1.0 gives the drive in SI units (lam = Omega in rad/s, tau = t in s).
 
         Returns
         -------
         DriveLaw
+            lam(tau) = Omega T and lam_dot(tau), time in units of T.
         """
         if self.move is not None:
             t0 = self.move.x[0]
@@ -382,11 +424,33 @@ class Drive:
         return HarmonicLaw(self.omega0 * T, terms, w)
 
     def omega(self, t: float) -> float:
-        """Omega(t) [rad/s]."""
+        """The angular velocity at one instant.
+
+        Parameters
+        ----------
+        t : float
+            Time [s] (from the first sample, for a move).
+
+        Returns
+        -------
+        float
+            Omega(t) [rad/s].
+        """
         return self.law(1.0).lam(t)
 
     def omega_dot(self, t: float) -> float:
-        """dOmega/dt (t) [rad/s^2]."""
+        """The angular acceleration at one instant.
+
+        Parameters
+        ----------
+        t : float
+            Time [s] (from the first sample, for a move).
+
+        Returns
+        -------
+        float
+            dOmega/dt (t) [rad/s^2].
+        """
         return self.law(1.0).lam_dot(t)
 
     @property
@@ -411,9 +475,14 @@ class Effects:
     Defaults follow the paper: Coriolis off (Sec. 2), the inextensible beam (`extension` off),
     everything else on.  `softening` is the in-plane centrifugal softening, the delta C y term of
     Eq. (EOM2); it needs `centrifugal`.  `extension` stretches the centerline by the centrifugal
-    tension, strain N/(EA) (not in the paper; see `rotbeam.model.elastica` and docs/model.md); it
-    needs `centrifugal` (without it there is no tension to stretch the beam) and the slenderness
-    h/L of `Dimensionless`.
+    tension, strain N/(EA) (not in the paper; docs/model.md, "Axial stretching"); it needs
+    `centrifugal` (without it there is no tension to stretch the beam) and the slenderness h/L
+    of `Dimensionless`.
+
+    Raises
+    ------
+    RotbeamInputError
+        For a field that is not a bool.
     """
 
     centrifugal: bool = default("effects", "centrifugal")
@@ -428,7 +497,23 @@ class Effects:
 
     @classmethod
     def from_list(cls, names: str | list[str]) -> Effects:
-        """Effects switched on by name, e.g. "centrifugal,euler,damping" ("all", "none" allowed)."""
+        """The effects switched on by name, the others off (the command line's `--effects`).
+
+        Parameters
+        ----------
+        names : str or list of str
+            Effect names, as a list or comma-separated, e.g. "centrifugal,euler,damping";
+            "all" and "none" are allowed.
+
+        Returns
+        -------
+        Effects
+
+        Raises
+        ------
+        RotbeamInputError
+            For an empty list or an unknown name (the message lists the allowed ones).
+        """
         given = names
         if isinstance(names, str):
             names = [n.strip() for n in names.split(",") if n.strip()]
@@ -451,6 +536,13 @@ class Effects:
         return cls(**{n: (n in names) for n in allowed})
 
     def active(self) -> list[str]:
+        """The names of the effects that are on.
+
+        Returns
+        -------
+        list of str
+            In the order of the fields.
+        """
         return [k for k, v in asdict(self).items() if v]
 
 
@@ -458,16 +550,24 @@ class Effects:
 class Dimensionless:
     """The dimensionless problem: everything the discrete model needs, nothing else.
 
-    Two scenes with equal `Dimensionless` are the same numerical problem, whatever their size.
-    The drive is `law` (lam(tau) = Omega T); without one, the paper's sine
-    lam0 + alpha sin(omega tau).  For any drive lam0 is the mean rotation, alpha the largest
-    swing about it and omega 2 pi over the period.
+    Lengths are in units of L, forces in units of EI/L^2 and time in units of
+    T = sqrt(rho A L^4 / (E I)), so two scenes with equal `Dimensionless` are the same
+    numerical problem, whatever their size.  The drive is `law` (lam(tau) = Omega T); without
+    one, the paper's sine lam0 + alpha sin(omega tau).  For any drive lam0 is the mean rotation,
+    alpha the largest swing about it and omega 2 pi over the period (docs/model.md,
+    "Dimensionless groups").
 
     `slenderness` h/L is read by the `extension` effect only: the axial compliance in units of
     the bending one is EI / (EA L^2) = (h/L)^2 / 12 (`kappa`); `from_physical` fills it only
     with `extension` on, so that scenes without it compare equal whatever their thickness.
     `tip_mass` and `tip_inertia` are a payload at the free end, m / (rho A L) and
-    J / (rho A L^3).
+    J / (rho A L^3) (docs/model.md, "A payload at the tip").
+
+    Raises
+    ------
+    RotbeamInputError
+        For a negative hub ratio, eta, alpha or payload, omega <= 0, a lam0 that is not finite,
+        or `extension` without a slenderness.
     """
 
     hub_ratio: float  #: r_o = R_o / L
@@ -567,15 +667,51 @@ class Dimensionless:
         return 2.0 * math.pi / self.omega
 
     def lam(self, tau: float) -> float:
-        """lam = Omega T at the instant tau."""
+        """The rotation rate of the drive at one instant.
+
+        Parameters
+        ----------
+        tau : float
+            Time in units of T.
+
+        Returns
+        -------
+        float
+            lam = Omega T, dimensionless.
+        """
         return self.law.lam(tau)
 
     def lam_dot(self, tau: float) -> float:
-        """d lam / d tau at the instant tau."""
+        """The rate of change of lam at one instant (what the Euler load scales with).
+
+        Parameters
+        ----------
+        tau : float
+            Time in units of T.
+
+        Returns
+        -------
+        float
+            d lam / d tau = (dOmega/dt) T^2, dimensionless.
+        """
         return self.law.lam_dot(tau)
 
     def scaled_drive(self, factor: float) -> Dimensionless:
-        """The scene with the drive's swing about its mean times `factor` (continuation)."""
+        """The scene with the drive's swing about its mean times `factor`.
+
+        Continuation in the drive's amplitude walks from 0 (the straight beam) to 1 (the
+        scene) along these.
+
+        Parameters
+        ----------
+        factor : float
+            Scale of the swing, dimensionless (1: the scene itself).
+
+        Returns
+        -------
+        Dimensionless
+            The same problem with the law scaled and alpha times `factor`.
+        """
         return replace(self, law=self.law.scaled(factor), alpha=self.alpha * factor)
 
 
@@ -624,14 +760,23 @@ FD_OVER_FN_LIMIT = 1e6
 
 
 def check_model_range(beam: Beam, drive: Drive) -> None:
-    """One-line error naming the drive (and G, f_n) when the scene is outside the model's range.
+    """Refuse a scene outside the model's range, with one line naming the drive (and G, f_n).
+
+    The range is C_max <= C_MAX_LIMIT, E_max <= E_MAX_LIMIT and f_d <= FD_OVER_FN_LIMIT f_n
+    (far beyond the paper's scenes), with C_max and E_max from the drive's largest Omega and
+    dOmega/dt.
 
     Parameters
     ----------
     beam : Beam
-        The beam.
+        The beam (G, f_n).
     drive : Drive
         The drive.
+
+    Raises
+    ------
+    RotbeamInputError
+        If C_max, E_max or f_d / f_n exceeds its limit.
     """
     G = beam.G
     w = drive.omega_max
@@ -660,13 +805,58 @@ def check_model_range(beam: Beam, drive: Drive) -> None:
 
 
 def omega0_for_cmax(beam: Beam, c_max: float, amplitude: float = 1.0) -> float:
-    """Omega_0 that gives the maximal centrifugal number C_max (inverse of Eq. max C num)."""
+    """The mean speed Omega_0 at which the sine drive reaches a given C_max.
+
+    The inverse of Eq. (max C num), C_max = G (Omega_0 + a)^2: the paper's figures are drawn
+    against C_max, the model runs at Omega_0.
+
+    Parameters
+    ----------
+    beam : Beam
+        The beam (G).
+    c_max : float
+        The largest centrifugal number, dimensionless, > 0.
+    amplitude : float
+        The drive's velocity amplitude a [rad/s].
+
+    Returns
+    -------
+    float
+        Omega_0 = sqrt(C_max / G) - a [rad/s].
+
+    Raises
+    ------
+    RotbeamInputError
+        If `c_max` is not a number > 0.
+    """
     c_max = check_positive("C_max", c_max)
     return math.sqrt(c_max / beam.G) - amplitude
 
 
 def fd_for_emax(beam: Beam, e_max: float, amplitude: float = 1.0) -> float:
-    """Drive frequency that gives the maximal Euler number E_max (inverse of Eq. max E num)."""
+    """The drive frequency f_d at which the sine drive reaches a given E_max.
+
+    The inverse of Eq. (max E num), E_max = G a 2 pi f_d.
+
+    Parameters
+    ----------
+    beam : Beam
+        The beam (G).
+    e_max : float
+        The largest Euler number, dimensionless, > 0.
+    amplitude : float
+        The drive's velocity amplitude a [rad/s], > 0.
+
+    Returns
+    -------
+    float
+        f_d = E_max / (G a 2 pi) [Hz].
+
+    Raises
+    ------
+    RotbeamInputError
+        If `e_max` or `amplitude` is not a number > 0.
+    """
     e_max = check_positive("E_max", e_max)
     amplitude = check_positive("drive.amplitude", amplitude)
     return e_max / (beam.G * amplitude * 2.0 * math.pi)

@@ -1,18 +1,9 @@
-r"""Quasi-static condition of the canonical second-order system (App. E of the paper).
+"""The quasi-static condition of the canonical damped oscillator (App. E of the paper).
 
-For u'' + 2 zeta u' + u = (F0/k) cos(c0 tau) the steady amplitudes are
-A_dyn = (F0/k) / sqrt((1 - c0^2)^2 + (2 zeta c0)^2) and A_QS = F0/k, so Eq. (Delta_RMS) gives
-
-    Delta RMS = (A_dyn - A_QS) / A_dyn = 1 - sqrt((1 - c0^2)^2 + (2 zeta c0)^2)    (c0 < 1 side).
-
-Setting it to a threshold t gives the biquadratic (Eq. c_0, printed for t = 0.1 as "+0.19")
-
-    c0^4 + (4 zeta^2 - 2) c0^2 + (1 - (1 - t)^2) = 0,
-
-i.e. with X = c0^2, B = 1 - 2 zeta^2 and C = t (2 - t) = 1 - (1 - t)^2:
-X = B -+ sqrt(B^2 - C).  The smaller root is the first crossing.  At zeta = 0, B = 1 and
-sqrt(1 - C) = 1 - t, so X = t exactly: c0(zeta -> 0) = sqrt(t), with no small-t approximation.
-The paper's table (0.02 -> 0.1414, ..., 0.10 -> 0.3162) is therefore the exact zeta = 0 root.
+The linear estimate f_d* ~ c_0 f_0 of the verdict rests on it: c_0 is the first frequency
+ratio at which the oscillator's Delta RMS reaches the threshold, the smaller root of a
+biquadratic; as zeta -> 0 it is sqrt(threshold) exactly, the printed table.  The derivation:
+docs/model.md, "The canonical second-order system".
 """
 
 from __future__ import annotations
@@ -35,9 +26,29 @@ def _check_zeta(zeta: float) -> float:
 
 
 def delta_rms_canonical(c0: float | np.ndarray, zeta: float) -> float | np.ndarray:
-    """Signed App. E expression 1 - sqrt((1 - c0^2)^2 + (2 zeta c0)^2) (>= 0 below resonance).
+    """Signed Delta RMS of the canonical oscillator, 1 - sqrt((1 - c0^2)^2 + (2 zeta c0)^2).
 
-    Eq. (Delta_RMS) takes |.|, which differs only where A_dyn < A_QS (far above resonance).
+    App. E's expression for u'' + 2 zeta u' + u = cos(c0 tau): >= 0 below resonance, where
+    the dynamic amplitude exceeds the static one.  Eq. (Delta_RMS) takes its absolute value,
+    which differs only where A_dyn < A_QS (far above resonance, or on the lag branch of an
+    overdamped oscillator).
+
+    Parameters
+    ----------
+    c0 : float or numpy.ndarray
+        Frequency ratio f / f_n, dimensionless, any shape.
+    zeta : float
+        Damping ratio, dimensionless, >= 0.
+
+    Returns
+    -------
+    float or numpy.ndarray
+        Delta RMS (dimensionless, signed), a float for a scalar `c0`, else the shape of `c0`.
+
+    Raises
+    ------
+    RotbeamInputError
+        If `zeta` is not a finite number >= 0.
     """
     z = _check_zeta(zeta)
     c = np.asarray(c0, dtype=float)
@@ -46,14 +57,55 @@ def delta_rms_canonical(c0: float | np.ndarray, zeta: float) -> float | np.ndarr
 
 
 def biquadratic_residual(c0: float, zeta: float, threshold: float) -> float:
-    """c0^4 + (4 zeta^2 - 2) c0^2 + (1 - (1 - threshold)^2), zero at a critical c0."""
+    """The biquadratic of Eq. (c_0), zero where the oscillator's Delta RMS equals the threshold.
+
+    c0^4 + (4 zeta^2 - 2) c0^2 + (1 - (1 - threshold)^2): a check of `c0_root` (its root) and
+    of the printed equation (the constant 0.19 at threshold 0.1).
+
+    Parameters
+    ----------
+    c0 : float
+        Frequency ratio f / f_n, dimensionless.
+    zeta : float
+        Damping ratio, dimensionless.
+    threshold : float
+        Delta RMS threshold, dimensionless.
+
+    Returns
+    -------
+    float
+        The residual, dimensionless.
+    """
     c2 = c0 * c0
     return c2 * c2 + (4.0 * zeta * zeta - 2.0) * c2 + (1.0 - (1.0 - threshold) ** 2)
 
 
 def c0_root(zeta: float, threshold: float = 0.10) -> float:
-    """Smallest positive root c0 of the biquadratic: the first frequency ratio f/f_n at which
-    Delta RMS reaches `threshold`.  Raises if damping is so high that it never does."""
+    """App. E's c_0: the first frequency ratio f / f_n at which Delta RMS reaches `threshold`.
+
+    The smallest positive root of the biquadratic, X = c0^2 = C / (B + sqrt(B^2 - C)) with
+    B = 1 - 2 zeta^2 and C = threshold (2 - threshold), written without cancellation.  The
+    verdict's linear estimate is f_d* ~ c_0 f_0.
+
+    Parameters
+    ----------
+    zeta : float
+        Damping ratio, dimensionless, >= 0.
+    threshold : float
+        Delta RMS threshold, dimensionless, in (0, 1).
+
+    Returns
+    -------
+    float
+        c_0, dimensionless.
+
+    Raises
+    ------
+    RotbeamInputError
+        If `zeta` or `threshold` is out of range, or the damping is so high that the response
+        never exceeds the static one by the threshold: (1 - 2 zeta^2)^2 < threshold
+        (2 - threshold) (the verdict then uses the lag branch).
+    """
     z = _check_zeta(zeta)
     t = check_threshold(threshold)
     B = 1.0 - 2.0 * z * z
@@ -72,5 +124,23 @@ def c0_root(zeta: float, threshold: float = 0.10) -> float:
 
 
 def c0_limit(threshold: float = 0.10) -> float:
-    """Exact zeta -> 0 root of the biquadratic: c0 = sqrt(threshold) (see module docstring)."""
+    """The undamped limit of c_0: sqrt(threshold), exactly (no small-threshold approximation).
+
+    The paper's c_0 table is this root (docs/model.md, "The canonical second-order system").
+
+    Parameters
+    ----------
+    threshold : float
+        Delta RMS threshold, dimensionless, in (0, 1).
+
+    Returns
+    -------
+    float
+        c_0 at zeta = 0, dimensionless.
+
+    Raises
+    ------
+    RotbeamInputError
+        If `threshold` is not in (0, 1).
+    """
     return math.sqrt(check_threshold(threshold))

@@ -14,12 +14,51 @@ import pandas as pd
 
 
 def rotation_angle(omega0: float, amplitude: float, f_d: float, t: np.ndarray) -> np.ndarray:
+    """The disk's angle under the sine drive, phi(t) = int_0^t Omega dt.
+
+    phi = Omega_0 t + a (1 - cos(2 pi f_d t)) / (2 pi f_d): what turns the rotating frame into
+    the lab frame.
+
+    Parameters
+    ----------
+    omega0 : float
+        Mean angular velocity Omega_0 [rad/s].
+    amplitude : float
+        Velocity amplitude a [rad/s].
+    f_d : float
+        Drive frequency [Hz], > 0.
+    t : numpy.ndarray
+        Time [s], any shape.
+
+    Returns
+    -------
+    numpy.ndarray
+        phi [rad], the shape of `t`.
+    """
     w = 2.0 * math.pi * f_d
     return omega0 * t + amplitude * (1.0 - np.cos(w * t)) / w
 
 
 def shapes_over_period(result, frames: int | None = None) -> pd.DataFrame:
-    """One row per node and frame: s, rotating-frame and lab-frame coordinates (units of L)."""
+    """The centerline at the samples of a simulated scene, in both frames (the shape figures).
+
+    The lab frame turns the rotating one by `rotation_angle` of the drive's omega0, amplitude
+    and f_d (the sine drive's angle).
+
+    Parameters
+    ----------
+    result : SceneResult
+        A simulated scene (`rotbeam.runs.scene.simulate`).
+    frames : int or None
+        How many equispaced samples of the RMS window to draw; None: every sample.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per node and frame: ``frame``, ``t_s`` [s] from the window's start, ``phase``
+        (t f_d), ``s``, ``x_rot``, ``y_rot``, ``x_lab``, ``y_lab`` (units of L, from the axis)
+        and ``phi`` [rad].
+    """
     scene = result.scene
     grid = scene.model().grid
     r_o = scene.beam.hub_ratio

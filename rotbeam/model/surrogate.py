@@ -1,30 +1,11 @@
-r"""One-mode Galerkin surrogate with Southwell stiffening (Sec. 6 of the paper).
+"""The one-mode Galerkin surrogate with Southwell stiffening (Sec. 6 of the paper).
 
-Linearising the continuum model of `rotbeam.elastica` about the straight, centrifugally
-stretched beam (dimensionless, time by T, see `rotbeam.params`) gives for small y(s, tau)
-
-    y_tt + eta y_t + y_ssss - (n0 y_s)_s - sigma lam^2 y = -lam_t (r_o + s),
-    n0(s) = lam^2 n0_unit(s),   n0_unit(s) = r_o (1 - s) + (1 - s^2) / 2,
-
-with sigma = 1 for the in-plane motion the paper models (the "softening" lam^2 y of F_y) and
-sigma = 0 for flapwise motion.  With the single trial function y = q(tau) phi(s), phi the first
-non-rotating cantilever mode, **normalised to phi(1) = 1** (q is the one-mode tip deflection),
-Galerkin projection gives the Hill-type oscillator
-
-    m q'' + eta m q' + [k_b + lam(tau)^2 (k_c - sigma m)] q = -lam_t(tau) F_e,
-    m = int phi^2,  k_b = int phi''^2 = beta_1^4 m,  k_c = int n0_unit phi'^2,
-    F_e = int (r_o + s) phi                                (all integrals over s in [0, 1]).
-
-Its frozen-lam frequency is exactly the Southwell line w0^2 = beta_1^4 + S_1 lam^2 with
-S_1 = (k_c - sigma m) / m, the Rayleigh quotient of the centrifugal tension (Eq. Southwell);
-in Hz, (2 pi f0)^2 = (2 pi f_n)^2 + S_1 Omega^2, since both sides scale by T^2.
-
-The steady state of the periodic linear ODE is computed directly by harmonic balance: with
-lam = lam0 + alpha sin(omega tau) the stiffness has harmonics 0, +-1, +-2 only, so the Fourier
-coefficients Q_k of q solve a pentadiagonal system; truncation K is doubled until the tail is
-negligible.  RMS(q) follows from Parseval.  The quasi-static response solves the same system
-without the inertia and damping terms, i.e. q = -lam_t F_e / (k_b + lam^2 (k_c - sigma m)) at
-every instant.  Coriolis loads drop out at this order (-2 lam x_t is quadratic in y).
+The beam linearised about the straight, centrifugally stretched state and projected on the first
+non-rotating cantilever mode is a Hill-type oscillator in the tip deflection q(tau); harmonic
+balance gives its periodic steady state under any harmonic drive, its frozen-lam frequency is
+the Southwell line, and Eq. (analytical_sol) follows from it.  It is cheap (about 6e-5 s a
+point) and good for f_d*, not for RMS amplitudes.  The derivation, the payload and what it gets
+right: docs/model.md, "The one-mode surrogate".
 """
 
 from __future__ import annotations
@@ -58,7 +39,27 @@ def _sigma1() -> float:
 
 
 def mode_shape(s: np.ndarray, derivative: int = 0) -> np.ndarray:
-    """First non-rotating cantilever mode, phi(1) = 1, or its 1st/2nd derivative in s."""
+    """The first non-rotating cantilever mode phi(s), normalised to phi(1) = 1, or a derivative.
+
+    With phi(1) = 1 the surrogate's coordinate q is the one-mode tip deflection.
+
+    Parameters
+    ----------
+    s : numpy.ndarray
+        Arc length in units of L, in [0, 1], any shape.
+    derivative : int
+        0, 1 or 2: phi, d phi / ds or d^2 phi / ds^2.
+
+    Returns
+    -------
+    numpy.ndarray
+        The shape of `s`, dimensionless.
+
+    Raises
+    ------
+    RotbeamInputError
+        For a derivative other than 0, 1 or 2.
+    """
     b, sg = BETA1, _sigma1()
     s = np.asarray(s, dtype=float)
     bs = b * s
@@ -112,23 +113,31 @@ def southwell_coefficient(
 ) -> float:
     """First Southwell coefficient S_1 from the Rayleigh quotient of the non-rotating mode.
 
+    (2 pi f_0)^2 = (2 pi f_n)^2 + S_1 Omega^2 is the Southwell line (Eq. centrifugal_stiffening);
     S_1 = [int n0 phi'^2 - sigma m_t] / m, n0 the straight beam's centrifugal tension per
     Omega^2 (with a tip mass mu: plus mu (r_o + 1) all along), m_t = int phi^2 + mu phi(1)^2 the
     mass the softening acts on, m = m_t + j phi'(1)^2; sigma = 1 with in-plane softening (the
-    paper's planar model), 0 flapwise.  Hub 0 flapwise, no payload: the classical 1.1933.
+    paper's planar model), 0 flapwise.  Hub 0 flapwise, no payload: the classical 1.1933; the
+    reference beam (r_o = 2.875): 4.7096 in-plane.
 
     Parameters
     ----------
     hub_ratio : float
-        R_o / L, >= 0.
+        R_o / L, dimensionless, >= 0.
     softening : bool
         In-plane (True) or flapwise.
     tip_mass, tip_inertia : float
-        A payload, m / (rho A L) and J / (rho A L^3).
+        A payload, m / (rho A L) and J / (rho A L^3), dimensionless.
 
     Returns
     -------
     float
+        S_1, dimensionless.
+
+    Raises
+    ------
+    RotbeamInputError
+        If `hub_ratio` is not a finite number >= 0.
     """
     r_o = _check_hub(hub_ratio)
     g = _mode_integrals()
@@ -139,7 +148,26 @@ def southwell_coefficient(
 
 
 def southwell_frequency_hz(beam: Beam, omega: float, softening: bool = True) -> float:
-    """f0 [Hz] from (2 pi f0)^2 = (2 pi f_n)^2 + S_1 Omega^2 (Eq. centrifugal_stiffening)."""
+    """The first frequency on the Southwell line, (2 pi f0)^2 = (2 pi f_n)^2 + S_1 Omega^2.
+
+    Eq. (centrifugal_stiffening), with the beam's payload in f_n and S_1.  It lies above the
+    exact first frequency (+3.8 % at C_max = 787 for the reference beam; `rotbeam.model.modes`
+    has the exact one).
+
+    Parameters
+    ----------
+    beam : Beam
+        The beam and its payload.
+    omega : float
+        Steady angular velocity Omega [rad/s].
+    softening : bool
+        In-plane (True) or flapwise.
+
+    Returns
+    -------
+    float
+        f0 [Hz].
+    """
     mu, j = beam.tip_mass / (beam.rhoA * beam.L), beam.tip_inertia / (beam.rhoA * beam.L**3)
     s1 = southwell_coefficient(beam.hub_ratio, softening, mu, j)
     return math.sqrt((2.0 * math.pi * beam.f_n) ** 2 + s1 * omega * omega) / (2.0 * math.pi)
@@ -147,7 +175,13 @@ def southwell_frequency_hz(beam: Beam, omega: float, softening: bool = True) -> 
 
 @dataclass(frozen=True)
 class SurrogateModel:
-    """Projected coefficients of the one-mode model, plus the drive it is run with."""
+    """Projected coefficients of the one-mode model, plus the drive it is run with.
+
+    The oscillator m q'' + eta m_beam q' + [k_b + lam^2 (k_c - sigma m_soft)] q = -lam_dot F_e
+    in the one-mode tip deflection q (units of L, time in units of T); build it with
+    `from_dimensionless`.  The integrals are over the mode normalised to phi(1) = 1
+    (docs/model.md, "The one-mode surrogate").
+    """
 
     dl: Dimensionless
     m: float  #: modal mass: int phi^2 + mu phi(1)^2 + j phi'(1)^2
@@ -162,6 +196,21 @@ class SurrogateModel:
 
     @classmethod
     def from_dimensionless(cls, dl: Dimensionless) -> SurrogateModel:
+        """The surrogate of a scene: the mode integrals with its hub ratio, payload and effects.
+
+        A load that is off contributes nothing (k_c = 0 without centrifugal loads, sigma = 0
+        without softening, F_e = 0 without the Euler load, eta = 0 without damping).  Coriolis
+        and extension do not enter: the surrogate is linear and inextensible.
+
+        Parameters
+        ----------
+        dl : Dimensionless
+            The scene (hub ratio, damping, drive, effects, payload).
+
+        Returns
+        -------
+        SurrogateModel
+        """
         g = _mode_integrals()
         ef = dl.effects
         r_o = float(dl.hub_ratio)
@@ -199,23 +248,43 @@ class SurrogateModel:
         return self.eta * (self.m_beam / self.m)
 
     def frequency(self, lam: float) -> float:
-        """Linear frequency w0 = sqrt(k_b/m + lam^2 (k_c - sigma m_soft)/m) at frozen lam."""
+        """The oscillator's undamped frequency with lam held fixed: the Southwell line.
+
+        w0 = sqrt(k_b/m + lam^2 (k_c - sigma m_soft)/m), the Rayleigh quotient of the bare mode
+        (an upper bound of the exact first frequency).
+
+        Parameters
+        ----------
+        lam : float
+            Omega T, dimensionless.
+
+        Returns
+        -------
+        float
+            w0 = omega_0 T, dimensionless.
+
+        Raises
+        ------
+        RotbeamInputError
+            If the modal stiffness is not positive (the softening exceeds the stiffening).
+        """
         w2 = (self.k_b + lam * lam * (self.k_c - self.sigma * self.m_soft)) / self.m
         if w2 <= 0:
             raise RotbeamInputError(f"non-positive modal stiffness {w2:.3g} at lam={lam!r}")
         return math.sqrt(w2)
 
     def frozen_rms(self) -> dict[str, float]:
-        """The steady state with lam held at lam0: the 1-dof oscillator's |H(k omega)| on each
-        harmonic of the drive's forcing -lam_dot F_e, summed by Parseval.
+        """The steady state with lam held at lam0 in the stiffness, for comparison with App. E.
 
-        For the sine, Delta RMS is 1 - sqrt((1 - c0^2)^2 + (2 zeta c0)^2), c0 = omega/w0,
-        2 zeta = eta/w0 (App. E).
+        The one-degree-of-freedom oscillator's |H(k omega)| on each harmonic of the drive's
+        forcing -lam_dot F_e, summed by Parseval.  For the sine, Delta RMS is
+        1 - sqrt((1 - c0^2)^2 + (2 zeta c0)^2), c0 = omega/w0, 2 zeta = eta/w0 (App. E).
 
         Returns
         -------
         dict
-            rms_dynamic, rms_quasistatic, delta_rms and w0 (at lam0).
+            ``rms_dynamic`` and ``rms_quasistatic`` of y_m (units of L), ``delta_rms``
+            (dimensionless) and ``w0`` (the frequency at lam0, units of 1/T).
         """
         dl = self.dl
         w0 = self.frequency(dl.lam0)
@@ -282,7 +351,27 @@ class SurrogateModel:
         return solve_banded((u, u), ab, rhs, check_finite=False)
 
     def harmonics(self, dynamic: bool = True) -> np.ndarray:
-        """Converged Fourier coefficients Q_k, k = -K..K, of the periodic q(tau)."""
+        """The Fourier coefficients of the periodic q(tau), by harmonic balance.
+
+        The truncation K starts at 16 and doubles until the two outermost harmonics at each end
+        are below 1e-13 of the total (at most 4096).
+
+        Parameters
+        ----------
+        dynamic : bool
+            The steady state (True) or the quasi-static response (no inertia, no damping).
+
+        Returns
+        -------
+        numpy.ndarray
+            Complex Q_k, k = -K..K, shape (2 K + 1,): q(tau) = Re sum_k Q_k exp(i k omega tau),
+            units of L.
+
+        Raises
+        ------
+        RotbeamInputError
+            If the tail is still above the tolerance at K = 4096.
+        """
         K = _HB_K0
         while True:
             Q = self._solve(K, dynamic)
@@ -299,12 +388,36 @@ class SurrogateModel:
             K *= 2
 
     def rms_midspan(self, dynamic: bool = True) -> float:
-        """RMS over one drive period of y_m = q phi(1/2) (Parseval)."""
+        """RMS over one drive period of y_m = q phi(1/2), by Parseval on the harmonics.
+
+        Parameters
+        ----------
+        dynamic : bool
+            The steady state (True) or the quasi-static response.
+
+        Returns
+        -------
+        float
+            RMS(y_m) in units of L.
+        """
         Q = self.harmonics(dynamic)
         return abs(self.phi_mid) * float(np.sqrt(np.sum(np.abs(Q) ** 2)))
 
     def midspan_series(self, tau: np.ndarray, dynamic: bool = True) -> np.ndarray:
-        """y_m(tau) of the periodic steady state (dynamic) or the quasi-static response."""
+        """y_m(tau) = q(tau) phi(1/2) of the steady state or the quasi-static response.
+
+        Parameters
+        ----------
+        tau : numpy.ndarray
+            Instants in units of T, any shape.
+        dynamic : bool
+            The steady state (True) or the quasi-static response.
+
+        Returns
+        -------
+        numpy.ndarray
+            y_m in units of L, the shape of `tau`.
+        """
         Q = self.harmonics(dynamic)
         K = (Q.size - 1) // 2
         k = np.arange(-K, K + 1)
@@ -314,9 +427,22 @@ class SurrogateModel:
 
 
 def steady_rms(dl: Dimensionless) -> dict[str, float]:
-    """RMS(y_m) dynamic and quasi-static of the surrogate with time-varying lam, and Delta RMS.
+    """The surrogate's answer for one scene: RMS(y_m) dynamic and quasi-static, and Delta RMS.
 
-    Also the frozen-lam (lam = lam0) closed forms, keys `frozen_*`.
+    With time-varying lam (harmonic balance), beside the frozen-lam closed forms.
+
+    Parameters
+    ----------
+    dl : Dimensionless
+        The scene.
+
+    Returns
+    -------
+    dict
+        ``rms_dynamic``, ``rms_quasistatic`` (units of L), ``delta_rms``; the same with lam
+        held at lam0, ``frozen_rms_dynamic``, ``frozen_rms_quasistatic``,
+        ``frozen_delta_rms``; ``w0_lam0`` (units of 1/T) and ``southwell`` (S_1), all
+        dimensionless but the RMS values.
     """
     model = SurrogateModel.from_dimensionless(dl)
     r_dyn = model.rms_midspan(dynamic=True)
@@ -348,10 +474,38 @@ def critical_frequency(
     n_scan: int = 200,
     f_max: float | None = None,
 ) -> float:
-    """First drive frequency f_d* [Hz] with Delta RMS = threshold (surrogate).
+    """The surrogate's f_d*: the first drive frequency at which Delta RMS reaches `threshold`.
 
     f_d is scanned linearly on (0, f_max] (default f_max = 1.5 f0, f0 the Southwell frequency at
     Omega_0 + a), the first bracket with Delta RMS >= threshold is refined with Brent's method.
+    Within 5 % of the full model's f_d* on every line of the paper's range.
+
+    Parameters
+    ----------
+    beam : Beam
+        The beam.
+    omega0 : float
+        Mean angular velocity Omega_0 [rad/s] of the sine drive.
+    threshold : float
+        Delta RMS threshold, dimensionless, in (0, 1).
+    amplitude : float
+        Velocity amplitude a [rad/s].
+    effects : Effects or None
+        The loads (default: the paper's).
+    n_scan : int
+        Scan points, >= 4.
+    f_max : float or None
+        Upper end of the scan [Hz].
+
+    Returns
+    -------
+    float
+        f_d* [Hz].
+
+    Raises
+    ------
+    RotbeamInputError
+        For a bad `threshold` or `n_scan`, or when no scanned frequency reaches the threshold.
     """
     threshold = check_threshold(threshold)
     effects = effects if effects is not None else Effects()
@@ -384,7 +538,37 @@ def phase_boundary(
     effects: Effects | None = None,
     n_scan: int = 200,
 ) -> dict[str, np.ndarray]:
-    """Surrogate boundary E*(C_max) = G a 2 pi f_d* (Eq. max E num) with f_d* and c = f_d*/f0."""
+    """The surrogate's boundary E*(C_max) = G a 2 pi f_d* (Eq. max E num), as in Fig. 7.
+
+    One `critical_frequency` per C_max, at Omega_0 = sqrt(C_max / G) - a.
+
+    Parameters
+    ----------
+    beam : Beam
+        The beam.
+    c_max_values : numpy.ndarray or list of float
+        Largest centrifugal numbers C_max, dimensionless, > 0.
+    threshold : float
+        Delta RMS threshold, dimensionless, in (0, 1).
+    amplitude : float
+        Velocity amplitude a [rad/s].
+    effects : Effects or None
+        The loads (default: the paper's).
+    n_scan : int
+        Scan points of each line.
+
+    Returns
+    -------
+    dict
+        Arrays of the length of `c_max_values`: ``c_max``, ``omega0`` [rad/s], ``f_d_star``
+        [Hz], ``e_star`` (dimensionless), ``f0_southwell`` [Hz] (at Omega_0 + a) and
+        ``c`` = f_d* / f0.
+
+    Raises
+    ------
+    RotbeamInputError
+        For a C_max that is not finite and > 0, or a line without a crossing.
+    """
     effects = effects if effects is not None else Effects()
     c_max = np.atleast_1d(np.asarray(c_max_values, dtype=float))
     if np.any(~np.isfinite(c_max)) or np.any(c_max <= 0):
@@ -413,9 +597,28 @@ def analytical_boundary(
     S1: float | None = None,
     amplitude: float = 1.0,
 ) -> float | np.ndarray:
-    """Eq. (analytical_sol): E* = c sqrt(E_n^2 + S_1 G a^2 C_max), E_n = G a 2 pi f_n.
+    """The paper's closed-form boundary, Eq. (analytical_sol): E* = c sqrt(E_n^2 + S_1 G a^2 C_max).
 
-    S1 defaults to the in-plane coefficient of the beam's hub ratio (softening on).
+    E_n = G a 2 pi f_n; it is c G a 2 pi f0 with f0 on the Southwell line at Omega_0 + a.
+
+    Parameters
+    ----------
+    beam : Beam
+        The beam (G, f_n, hub ratio).
+    c_max : float or numpy.ndarray
+        Largest centrifugal numbers, dimensionless.
+    c : float
+        The ratio f_d* / f0, dimensionless.
+    S1 : float or None
+        Southwell coefficient; default the in-plane one of the beam's hub ratio (without its
+        payload).
+    amplitude : float
+        Velocity amplitude a [rad/s].
+
+    Returns
+    -------
+    float or numpy.ndarray
+        E*, dimensionless, a float for a scalar `c_max`.
     """
     s1 = southwell_coefficient(beam.hub_ratio, True) if S1 is None else float(S1)
     G = beam.G
@@ -432,10 +635,30 @@ def analytical_boundary_exact(
     N: int = 40,
     softening: bool = True,
 ) -> float | np.ndarray:
-    """E* = c G a 2 pi f0 with f0 the exact first frequency at Omega_0 + a = sqrt(C_max / G).
+    """Eq. (analytical_sol) with the exact first frequency: E* = c G a 2 pi f0.
 
-    f0 from `rotbeam.modes.modes` (discrete model, N intervals) instead of
-    the Southwell line.
+    f0 is the first frequency of the linearised discrete model (`rotbeam.model.modes.modes`,
+    N intervals) at Omega_0 + a = sqrt(C_max / G), instead of the Southwell line.
+
+    Parameters
+    ----------
+    beam : Beam
+        The beam.
+    c_max : float or numpy.ndarray
+        Largest centrifugal numbers, dimensionless.
+    c : float
+        The ratio f_d* / f0, dimensionless.
+    amplitude : float
+        Velocity amplitude a [rad/s].
+    N : int
+        Grid intervals of the modes.
+    softening : bool
+        In-plane (True) or flapwise.
+
+    Returns
+    -------
+    float or numpy.ndarray
+        E*, dimensionless, a float for a scalar `c_max`.
     """
     G = beam.G
     cm = np.atleast_1d(np.asarray(c_max, dtype=float))

@@ -1,7 +1,9 @@
-"""A single move: the beam from the quasi-static state at the move's first sample, time-stepped
-through the move and a settling window after it, beside its quasi-static twin
-(docs/model.md, "Drives").  The answers: peaks, RMS and Delta RMS over the move, the residual
-vibration after it and how long that takes to settle."""
+"""A single move: the beam time-stepped through it and a settling window after it.
+
+The beam starts from the quasi-static state at the move's first sample and runs beside its
+quasi-static twin.  The answers: peaks, RMS and Delta RMS over the move, the residual vibration
+after it and how long that takes to settle (definitions: docs/model.md, "Drives").
+"""
 
 from __future__ import annotations
 
@@ -32,7 +34,12 @@ MOVE_SAMPLES = 512
 
 @dataclass
 class MoveResult:
-    """The beam through a single move, dynamic beside quasi-static."""
+    """The beam through a single move, dynamic beside quasi-static.
+
+    What `simulate_move` returns: the samples (SI time, y_m in units of L) and the move's
+    numbers.  NaN marks a number the run did not reach (no samples, or a settling time beyond
+    the window).
+    """
 
     scene: Scene
     t_s: np.ndarray  #: sample instants from the start of the move [s]
@@ -54,7 +61,16 @@ class MoveResult:
     seconds: float
 
     def summary(self) -> dict[str, Any]:
-        """The move's numbers for tables and JSON (scalars only)."""
+        """The move's numbers for tables and JSON (scalars only).
+
+        Returns
+        -------
+        dict
+            ``peak_ym``, ``peak_ym_quasistatic``, ``rms_dynamic``, ``rms_quasistatic``,
+            ``residual_ym`` (units of L), ``delta_rms`` (dimensionless), ``settling_time_s``,
+            ``settle_s``, ``move_s``, ``seconds`` [s], ``converged``, ``message``, ``nfev``,
+            and ``N``, ``drive`` ("move") and ``effects`` (comma-separated).
+        """
         keys = ("peak_ym", "peak_ym_quasistatic", "rms_dynamic", "rms_quasistatic",
                 "delta_rms", "residual_ym", "settling_time_s", "settle_s", "move_s",
                 "converged", "message", "nfev", "seconds")  # fmt: skip
@@ -64,7 +80,14 @@ class MoveResult:
         return out
 
     def time_series(self) -> dict[str, np.ndarray]:
-        """t [s], Omega [rad/s] and y_m / L dynamic and quasi-static at the samples."""
+        """The samples, for a CSV file or a figure.
+
+        Returns
+        -------
+        dict
+            ``t_s`` [s] from the start of the move, ``omega`` [rad/s], ``y_m_dynamic`` and
+            ``y_m_quasistatic`` (units of L); arrays of one length.
+        """
         return {"t_s": self.t_s, "omega": self.omega, "y_m_dynamic": self.y_dynamic,
                 "y_m_quasistatic": self.y_quasistatic}  # fmt: skip
 
@@ -72,19 +95,29 @@ class MoveResult:
 def simulate_move(scene: Scene) -> MoveResult:
     """Time-step a scene whose drive is a `move` through it and a settling window after it.
 
-    The beam starts in the quasi-static state of the move's first sample (its rate from the
-    quasi-static series); Radau with the exact Jacobian at numerics.rtol; after the move the
-    disk turns at its last speed for `drive.settle` seconds or, without it, first-mode
-    periods until |y_m| over one stays below CALM of the peak (at most SETTLE_PERIODS).  The
-    wall time is bounded by numerics.max_seconds; a run cut short says so.
+    A move has no periodic steady state, so this replaces `rotbeam.runs.scene.simulate` for
+    it.  The beam starts in the quasi-static state of the move's first sample (its rate from the
+    quasi-static series); Radau with the exact Jacobian at numerics.rtol samples y_m PER_PERIOD
+    times per first-mode period (at least MOVE_SAMPLES over the move); after the move the disk
+    turns at its last speed for `drive.settle` seconds or, without it, first-mode periods until
+    |y_m| over one stays below CALM of the peak (at most SETTLE_PERIODS).  The wall time is
+    bounded by numerics.max_seconds; a run cut short says so in `converged` and `message`.
 
     Parameters
     ----------
     scene : Scene
         Beam, a drive with a `move`, effects, numerics.
+
     Returns
     -------
     MoveResult
+        The samples and the move's numbers: peaks, RMS, Delta RMS, residual vibration and
+        settling time (docs/model.md, "Drives").
+
+    Raises
+    ------
+    RotbeamInputError
+        If the scene's drive is not a move.
     """
     if scene.drive.move is None:
         raise RotbeamInputError(

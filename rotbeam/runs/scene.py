@@ -44,6 +44,23 @@ CLASSES = {"beam": Beam, "drive": Drive, "effects": Effects, "numerics": Numeric
 
 @dataclass(frozen=True)
 class Scene:
+    """One scene: a beam, a drive, the effects and the numerics, all in SI units.
+
+    What every command runs; `dimensionless` is the problem the model solves and `model` the
+    discrete model on the scene's grid.  Build it from a scene spec with `build_scene`.
+
+    Parameters
+    ----------
+    beam : Beam
+        The beam and its payload (default: the paper's reference beam).
+    drive : Drive
+        How the disk turns.
+    effects : Effects
+        The loads (default: the paper's).
+    numerics : Numerics
+        Grid, solver tolerances and budgets.
+    """
+
     beam: Beam = Beam()
     drive: Drive = Drive()
     effects: Effects = Effects()
@@ -55,7 +72,18 @@ class Scene:
         return Dimensionless.from_physical(self.beam, self.drive, self.effects)
 
     def model(self, N: int | None = None) -> DiscreteModel:
-        """The discrete model of the scene on N grid intervals (default numerics.N)."""
+        """The discrete model of the scene.
+
+        Parameters
+        ----------
+        N : int or None
+            Grid intervals (default numerics.N).
+
+        Returns
+        -------
+        DiscreteModel
+            A `DiscreteElastica` of the scene's dimensionless problem.
+        """
         return DiscreteElastica(self.dimensionless, self.numerics.N if N is None else N)
 
 
@@ -74,6 +102,12 @@ def build_scene(spec: dict[str, Any] | None = None, base: str | Path = ".") -> S
     Returns
     -------
     Scene
+
+    Raises
+    ------
+    RotbeamInputError
+        One line naming the offending key: an unknown section or key, a bad value, a bad drive
+        file, or a scene outside the model's range (`check_model_range`).
     """
     sections = scene_sections(spec)
     parts = {
@@ -99,6 +133,13 @@ def drive_of(values: dict[str, Any], base: Path) -> Drive:
     Returns
     -------
     Drive
+
+    Raises
+    ------
+    RotbeamInputError
+        For amplitude and harmonics together, a harmonic that is not {k, amplitude, phase}, a
+        profile or move that is neither a CSV file nor (a profile) {file, harmonics} or a named
+        shape, a bad named shape, or a bad file (`rotbeam.config.scenefile.read_columns`).
     """
     values = dict(values)
     if "harmonics" in values and "amplitude" in values:
@@ -194,6 +235,11 @@ def load_scene(path: str | Path) -> Scene:
     Returns
     -------
     Scene
+
+    Raises
+    ------
+    RotbeamInputError
+        For a file that cannot be read or parsed, or a scene `build_scene` refuses.
     """
     from ..config.scenefile import load_scene_file, split_auto
 
@@ -204,7 +250,12 @@ def load_scene(path: str | Path) -> Scene:
 
 @dataclass
 class SceneResult:
-    """Dynamic and quasi-static responses of one scene over the same RMS window."""
+    """Dynamic and quasi-static responses of one scene over the same RMS window.
+
+    What `simulate` returns.  `tau` is in units of T and the deflections y_m in units of L;
+    `delta_rms` is the paper's criterion (dimensionless).  With numerics.extrapolate the RMS
+    values are Richardson's and `extrapolation` says from what.
+    """
 
     scene: Scene
     dynamic: SteadyState
@@ -220,9 +271,22 @@ class SceneResult:
 
     @property
     def converged(self) -> bool:
+        """Whether the dynamic run reached a verified, stable steady state."""
         return self.dynamic.converged
 
     def summary(self) -> dict[str, Any]:
+        """The scene's numbers for tables and JSON (scalars only).
+
+        Returns
+        -------
+        dict
+            RMS values (units of L) and Delta RMS, how the steady state was reached
+            (``converged``, ``status``, ``message``, ``periods``, ``transient_bound``,
+            ``nfev``), the Floquet columns (`stability_columns`), the drive's groups
+            (`rotbeam.model.params.drive_groups`: C_max, E_max, E_n, I_max, f_d / f_n), f_n [Hz],
+            the drive and numerics settings, G [s^2], delta, eta, zeta, the wall time [s] and,
+            when asked, the extrapolation's fields.
+        """
         beam, drive = self.scene.beam, self.scene.drive
         out: dict[str, Any] = {
             "rms_dynamic": self.rms_dynamic,
@@ -251,6 +315,14 @@ class SceneResult:
         return out
 
     def time_series(self) -> dict[str, np.ndarray]:
+        """The samples of the RMS window, for a CSV file or a figure.
+
+        Returns
+        -------
+        dict
+            ``tau`` (units of T), ``t_s`` [s], ``y_m_dynamic`` and ``y_m_quasistatic`` (units
+            of L); arrays of one length.
+        """
         T = self.scene.beam.T
         return {
             "tau": self.tau,
@@ -261,15 +333,42 @@ class SceneResult:
 
 
 def stability_columns(dyn: SteadyState) -> dict[str, Any]:
-    """floquet_max (largest |mu| of the reported orbit, or of the collocated one when no steady
-    state was reached) and stable (None without multipliers)."""
+    """The Floquet columns of a dynamic run, for the summary.
+
+    Parameters
+    ----------
+    dyn : SteadyState
+        The dynamic run.
+
+    Returns
+    -------
+    dict
+        ``floquet_max``: the largest |mu| of the reported orbit, or of the collocated one when
+        no steady state was reached (NaN without multipliers); ``stable``: bool, or None
+        without multipliers.
+    """
     fl = dyn.floquet
     return {"floquet_max": fl.max_abs if fl is not None else math.nan,
             "stable": bool(fl.stable) if fl is not None else None}  # fmt: skip
 
 
 def quasistatic_midspan(model: DiscreteModel, taus: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """The quasi-static angles (n, m) and y_m / L (m,) of the model at the instants `taus`."""
+    """The quasi-static response of the model at given instants.
+
+    Parameters
+    ----------
+    model : DiscreteModel
+        The model and its drive.
+    taus : numpy.ndarray
+        Instants in units of T, shape (m,).
+
+    Returns
+    -------
+    theta : numpy.ndarray
+        Angles [rad], shape (n, m).
+    y_m : numpy.ndarray
+        Midspan deflection in units of L, shape (m,).
+    """
     theta = quasistatic_series(model, taus)
     return theta, np.atleast_1d(model.midspan(theta))
 
@@ -287,20 +386,22 @@ def simulate(
 ) -> SceneResult:
     """Dynamic steady state and quasi-static response sampled at the same instants.
 
-    With numerics.extrapolate the RMS values are Richardson-extrapolated from N and N // 2 (the
-    discretisation is second order in 1/N); the time series stay those of grid N.  Both grids
-    draw on one wall-time budget.
+    The dynamic run is `rotbeam.solve.steady.steady_state` (collocation, certificate or time
+    stepping; it never raises for a solver failure: the result says), the quasi-static one the
+    static equilibrium at every sample.  With numerics.extrapolate the RMS values are
+    Richardson-extrapolated from N and N // 2 (the discretisation is second order in 1/N),
+    unless the two grids differ by more than EXTRAPOLATION_MAX_CHANGE; the time series stay
+    those of grid N.  Both grids draw on one wall-time budget.
 
     Parameters
     ----------
     scene : Scene
-        Beam, drive (periodic: a move is `rotbeam.runs.move.simulate_move`'s), effects and
-        numerics.
+        Beam, a periodic drive, effects, numerics.
     progress : callable or None
-        progress(period, transient bound) after every period of time stepping on grid N.
+        Called as progress(period, transient bound) by the time stepping on grid N.
     guess : numpy.ndarray or None
-        An orbit (M, n) on grid N that seeds the collocation (the previous point's along a
-        sweep).
+        Seeds the periodic collocation (the previous point's orbit along a sweep): angles
+        [rad] at M equispaced instants of a period on grid N, shape (M, n).
     time_budget : TimeBudget or None
         The wall-time budget of the whole call, shared with a caller's other phases; None:
         numerics.max_seconds from the call.
@@ -309,12 +410,12 @@ def simulate(
     -------
     SceneResult
         Both responses over one RMS window, their RMS and Delta RMS, the steady state's status,
-        message and multipliers, the wall time, and Richardson's account when asked for.
+        message and multipliers, the wall time [s], and Richardson's account when asked for.
 
     Raises
     ------
     RotbeamInputError
-        For a drive that is a single move.
+        If the drive is a single move (`rotbeam.runs.move.simulate_move` runs it).
     """
     if scene.drive.move is not None:
         raise RotbeamInputError(
