@@ -133,9 +133,9 @@ def test_cli_critical_bad_flags_are_one_line_exit_2(flags, words):
 
 def test_simulate_without_steady_state_classifies_on_the_response_grid(tmp_path):
     """A run from rest stopped after two periods (no steady state: exit 1) is classified on the
-    grid --response-N asks for, over the periods --response-periods asks for; the class is one
-    of the four words and the exponent is finite (the class of so short a run is not the point:
-    tests/test_nonlinear.py checks the classifier)."""
+    grid --response-N asks for, over the periods --response-periods asks for (4: the fewest a
+    class rests on); the class is one of the four words and the exponent is finite (the class of
+    so short a run is not the point: tests/test_nonlinear.py checks the classifier)."""
     import math
 
     scene = tmp_path / "s.yaml"
@@ -144,11 +144,11 @@ def test_simulate_without_steady_state_classifies_on_the_response_grid(tmp_path)
         "numerics: {N: 4, start: rest, max_periods: 2, extrapolate: false}\n"
     )
     p = run("simulate", "--scene", str(scene), "--json", "--response-N", "4",
-            "--response-periods", "2")  # fmt: skip
+            "--response-periods", "4")  # fmt: skip
     assert p.returncode == 1, p.stderr
     d = json.loads(p.stdout)
     assert d["response"] in ("periodic", "subharmonic", "quasiperiodic", "chaotic")
-    assert d["response_N"] == 4 and d["response_periods"] == 4, d["response_message"]
+    assert d["response_N"] == 4 and d["response_periods"] == 8, d["response_message"]
     assert math.isfinite(d["lyapunov_max"])
     assert p.stderr == ""  # no terminal: no progress bar
 
@@ -186,7 +186,7 @@ def test_progress_bar_in_a_terminal_and_not_with_quiet(tmp_path):
         "numerics: {N: 4, start: rest, max_periods: 2, extrapolate: false}\n"
     )
     argv = ("simulate", "--scene", str(scene), "--json", "--response-N", "4",
-            "--response-periods", "2")  # fmt: skip
+            "--response-periods", "4")  # fmt: skip
     rc, out, err = in_a_terminal(*argv)
     assert rc == 1 and json.loads(out)["response_periods"] == 4
     assert "response (N = 4)" in err and "4/4" in err

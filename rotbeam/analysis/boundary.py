@@ -43,9 +43,9 @@ def boundary_table(
 
     Every line gives its rows, an empty one included (NaN, found False), so that a fit over the
     table counts it as dropped.  `points_failed` counts points without a finite Delta RMS
-    (solver failures) or from runs that report no converged steady state; `points_unconverged`
-    counts the latter.  Unconverged points are left out of f_d*: their RMS is what the solver saw
-    when its budget ran out, not the steady state.
+    (solver failures, status -2) or from runs that report no converged steady state;
+    `points_unconverged` counts the latter.  Unconverged points are left out of f_d*: their RMS
+    is what the solver saw when its budget ran out, not the steady state.
 
     Parameters
     ----------
@@ -91,7 +91,9 @@ def boundary_table(
         delta = df["delta_rms"].to_numpy(float).copy()
         if "converged" in df:
             conv = df["converged"].astype(str).str.lower().isin(["true", "1", "1.0"]).to_numpy()
-            unconverged = int((~conv & np.isfinite(delta)).sum())
+            # a run that ended without a steady state (status 1, 2), not a solver failure (-2)
+            ran = df["status"].to_numpy() != -2 if "status" in df else np.isfinite(delta)
+            unconverged = int((~conv & ran).sum())
             delta[~conv] = np.nan
         a = float(first["amplitude"])
         for th in thresholds:

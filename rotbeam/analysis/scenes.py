@@ -14,14 +14,50 @@ from typing import Any
 
 import pandas as pd
 
+from ..config.errors import RotbeamInputError
 from ..runs.move import simulate_move
-from ..runs.scene import build_scene, simulate
+from ..runs.scene import Scene, build_scene, simulate
 from .verdict import judge, judge_move
 
 #: the table's columns, a scene a row
 COLUMNS = ["scene", "drive", "tip_mass_kg", "N", "rms_dynamic", "rms_quasistatic", "delta_rms",
            "quasistatic_ok", "f0_hz", "peak_ym", "peak_ym_quasistatic", "residual_ym",
            "settling_time_s", "converged", "seconds", "verdict"]  # fmt: skip
+
+
+def build_scenes(
+    specs: dict[str, dict[str, Any]], base: str | Path = ".", where: str = "user_scenes"
+) -> dict[str, Scene]:
+    """Every scene of `specs` built and checked (`rotbeam.runs.scene.build_scene`).
+
+    Parameters
+    ----------
+    specs : dict
+        Scene name -> a scene spec (the sections of a scene file).
+    base : str or Path
+        The folder relative drive files start from.
+    where : str
+        What the specs are called in messages (the config key).
+
+    Returns
+    -------
+    dict
+        Scene name -> Scene, in the order given.
+
+    Raises
+    ------
+    RotbeamInputError
+        At the first spec refused, named as where.name.section.key.
+    """
+    if not isinstance(specs, dict):
+        raise RotbeamInputError(f"{where} = {specs!r} must be a mapping of name -> scene spec")
+    out = {}
+    for name, spec in specs.items():
+        try:
+            out[name] = build_scene(spec, base)
+        except RotbeamInputError as exc:
+            raise RotbeamInputError(f"{where}.{name}.{exc}") from None
+    return out
 
 
 def judge_scenes(
@@ -51,9 +87,8 @@ def judge_scenes(
         For a scene spec `rotbeam.runs.scene.build_scene` refuses, or a bad threshold.
     """
     rows = []
-    for name, spec in specs.items():
+    for name, scene in build_scenes(specs, base).items():  # all checked before any runs
         t0 = time.perf_counter()
-        scene = build_scene(spec, base)
         row: dict[str, Any] = {"scene": name, "drive": scene.drive.kind, "N": scene.numerics.N,
                                "tip_mass_kg": scene.beam.tip_mass}  # fmt: skip
         if scene.drive.move is not None:

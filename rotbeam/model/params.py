@@ -239,9 +239,9 @@ class Harmonic:
 
     def __post_init__(self) -> None:
         if isinstance(self.k, bool) or not isinstance(self.k, int) or self.k < 1:
-            raise RotbeamInputError(f"drive.harmonics: k = {self.k!r}; allowed: an integer >= 1")
-        check_nonnegative("drive.harmonics amplitude", self.amplitude)
-        check_finite("drive.harmonics phase", self.phase)
+            raise RotbeamInputError(f"drive.harmonics.k must be an integer >= 1, got {self.k!r}")
+        check_nonnegative("drive.harmonics.amplitude", self.amplitude)
+        check_finite("drive.harmonics.phase", self.phase)
 
 
 #: fewest samples of a sampled period or of a move

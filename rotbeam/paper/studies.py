@@ -296,12 +296,15 @@ def grid_columns(
     return columns, first
 
 
-def check_config(config: dict[str, Any], schema: dict | None = None) -> None:
+def check_config(
+    config: dict[str, Any], schema: dict | None = None, scene_dir: str | Path = "config"
+) -> None:
     """The checks of the workflow config that the JSON schema cannot express.
 
     NaN and inf pass its bounds; scan ranges must not be empty or reversed; every beam (the
     reference, the Fig. 7 grid, each reproduction grid) must be one `Beam` accepts, with the
-    clamp off the axis; effects and numerics must parse.
+    clamp off the axis; effects and numerics must parse; every user scene must be one
+    `build_scene` accepts.
 
     Parameters
     ----------
@@ -309,6 +312,8 @@ def check_config(config: dict[str, Any], schema: dict | None = None) -> None:
         The workflow config.
     schema : dict or None
         The workflow's config schema, which words the allowed range of a non-finite value.
+    scene_dir : str or Path
+        The folder the user scenes' drive files start from.
 
     Raises
     ------
@@ -366,12 +371,17 @@ def check_config(config: dict[str, Any], schema: dict | None = None) -> None:
 
     Effects.from_list(config["effects"])
     numerics_from_config(config.get("numerics"))
+    if config.get("user_scenes"):
+        from ..analysis.scenes import build_scenes
+
+        build_scenes(config["user_scenes"], scene_dir)
 
 
 def validate_config(
     config: dict[str, Any],
     schema_path: str | Path,
     schema_validate: Callable[[dict[str, Any]], None] | None = None,
+    scene_dir: str | Path | None = None,
 ) -> dict[str, Any]:
     """The workflow's config check: numbers given as strings become numbers, then the JSON
     schema, then `check_config`.
@@ -385,6 +395,9 @@ def validate_config(
     schema_validate : callable or None
         Validates a config against the schema (snakemake.utils.validate in the workflow);
         None: jsonschema's Draft 2020-12 validator.
+    scene_dir : str, Path or None
+        The folder the user scenes' drive files start from; None: `config/` beside the
+        schema's `workflow/` folder (the workflow's config folder).
 
     Returns
     -------
@@ -419,7 +432,7 @@ def validate_config(
         if err is None:
             raise RotbeamInputError(" ".join(str(exc).split())) from None
         raise RotbeamInputError(schema_error_message(err, root)) from None
-    check_config(config, root)
+    check_config(config, root, scene_dir or Path(schema_path).resolve().parents[2] / "config")
     return config
 
 

@@ -195,7 +195,12 @@ def _harmonics(items: Any) -> tuple[Harmonic, ...]:
                 f"drive.harmonics[{i}] = {h!r}: allowed: a mapping with k, amplitude [rad/s] "
                 f"and optionally phase [rad]"
             )
-        out.append(Harmonic(h["k"], h["amplitude"], h.get("phase", 0.0)))
+        try:
+            out.append(Harmonic(h["k"], h["amplitude"], h.get("phase", 0.0)))
+        except RotbeamInputError as exc:  # name the entry: drive.harmonics[i].amplitude
+            raise RotbeamInputError(
+                str(exc).replace("drive.harmonics.", f"drive.harmonics[{i}].", 1)
+            ) from None
     return tuple(out)
 
 
@@ -491,8 +496,8 @@ def _simulate_grid(
         theta_qs, y_qs = quasistatic_midspan(model, dyn.tau)
     r_dyn = rms(dyn.y_m)
     r_qs = rms(y_qs)
-    if not math.isfinite(r_dyn) or (not dyn.converged and dyn.periods == 0):
-        r_dyn = float("nan")  # no period seen: the window would be the initial state
+    if not math.isfinite(r_dyn) or dyn.y_m.size <= 1:
+        r_dyn = float("nan")  # no period stepped: the one sample is the initial state
     return SceneResult(
         scene=scene,
         dynamic=dyn,
