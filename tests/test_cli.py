@@ -178,7 +178,7 @@ def in_a_terminal(*argv: str) -> tuple[int, str, str]:
 
 
 def test_progress_bar_in_a_terminal_and_not_with_quiet(tmp_path):
-    """On a terminal the classification's periods show as a tqdm bar on stderr (4 of 4), and
+    """On a terminal the classification's periods show as a tqdm bar on stderr (8 of 8), and
     the JSON on stdout stays one clean object; --quiet draws nothing."""
     scene = tmp_path / "s.yaml"
     scene.write_text(
@@ -188,8 +188,8 @@ def test_progress_bar_in_a_terminal_and_not_with_quiet(tmp_path):
     argv = ("simulate", "--scene", str(scene), "--json", "--response-N", "4",
             "--response-periods", "4")  # fmt: skip
     rc, out, err = in_a_terminal(*argv)
-    assert rc == 1 and json.loads(out)["response_periods"] == 4
-    assert "response (N = 4)" in err and "4/4" in err
+    assert rc == 1 and json.loads(out)["response_periods"] == 8
+    assert "response (N = 4)" in err and "8/8" in err
     rc, out, err = in_a_terminal(*argv, "--quiet")
-    assert rc == 1 and json.loads(out)["response_periods"] == 4
+    assert rc == 1 and json.loads(out)["response_periods"] == 8
     assert err == ""

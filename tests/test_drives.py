@@ -194,7 +194,7 @@ def write(tmp_path, name: str, header: str, rows) -> str:
         (
             "k zero",
             lambda p: {"omega0": 5.0, "harmonics": [{"k": 0, "amplitude": 1.0}]},
-            ["k = 0", "an integer >= 1"],
+            ["drive.harmonics[0].k", "an integer >= 1", "got 0"],
         ),  # fmt: skip
         (
             "k twice",

@@ -28,7 +28,12 @@ from rotbeam.paper.studies import (
 SCHEMA = workflow.source_path("../schemas/config.schema.yaml")
 try:
     config.update(
-        validate_config(dict(config), SCHEMA, lambda c: validate(c, schema=SCHEMA))
+        validate_config(
+            dict(config),
+            SCHEMA,
+            lambda c: validate(c, schema=SCHEMA),
+            Path(workflow.basedir) / "config",
+        )
     )
 except RotbeamInputError as exc:
     print(f"rotbeam: invalid config: {exc}", file=sys.stderr)
