@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from rotbeam.config.errors import RotbeamInputError
-from rotbeam.model.params import Beam
+from rotbeam.model.params import Beam, Drive, Harmonic
 from rotbeam.runs.move import simulate_move
 from rotbeam.runs.scene import build_scene, simulate
 
@@ -249,3 +249,26 @@ def test_cli_move_json_has_the_move_keys(tmp_path):
                 "residual_ym", "settling_time_s", "verdict"):  # fmt: skip
         assert key in out and out[key] is not None
     assert math.isfinite(out["peak_ym"]) and out["peak_ym"] > 0
+
+
+def test_disk_angle_is_the_integral_of_the_speed(tmp_path):
+    """Drive.angle: for the sine, phi = Omega_0 t + a (1 - cos 2 pi f_d t) / (2 pi f_d) (its
+    closed form); for two harmonics and a sampled profile, the trapezoid rule of Omega over a
+    fine grid (a second quadrature)."""
+    sine = Drive(omega0=5.0, amplitude=1.0, f_d=2.0)
+    t = 0.37
+    w = 2 * math.pi * 2.0
+    assert sine.angle(t) == pytest.approx(5.0 * t + (1 - math.cos(w * t)) / w, rel=1e-14)
+    two = Drive(omega0=20.0, f_d=2.5, harmonics=(Harmonic(1, 1.0, 0.0), Harmonic(3, 0.5, 0.7)))
+    profile = build_scene(
+        {
+            "drive": {
+                "f_d": 1.0,
+                "profile": {"shape": "trapezoid", "omega_min": 0.0, "omega_max": 20.0, "ramp": 0.2},
+            }
+        }
+    ).drive
+    ts = np.linspace(0.0, 1.3, 20001)
+    for drive in (two, profile):
+        trapezoid = np.trapezoid([drive.omega(x) for x in ts], ts)
+        assert drive.angle(1.3) == pytest.approx(trapezoid, rel=1e-7)

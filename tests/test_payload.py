@@ -12,8 +12,8 @@ from chain_model import ChainModel
 from scipy.optimize import brentq
 
 from rotbeam.model.elastica import DiscreteElastica
-from rotbeam.model.modes import dimensionless_frequencies, modes
-from rotbeam.model.params import Beam, Dimensionless, Drive
+from rotbeam.model.modes import damping_ratio, dimensionless_frequencies, modes
+from rotbeam.model.params import Beam, Dimensionless, Drive, Effects
 from rotbeam.model.surrogate import SurrogateModel
 from rotbeam.runs.scene import Scene, build_scene, simulate
 from rotbeam.solve.numerics import Numerics
@@ -134,3 +134,47 @@ def test_a_payload_in_a_scene_and_its_verdict():
     assert res.converged and res.dynamic.floquet.stable
     assert res.summary()["f_n_hz"] == pytest.approx(beam.f_n)
     assert np.isfinite(res.delta_rms) and 0 < res.delta_rms < 1
+
+
+@pytest.mark.parametrize("payload", [{"tip_mass": 0.5}, {"tip_inertia": 0.05},
+                                     {"tip_mass": 0.5, "tip_inertia": 0.05}])  # fmt: skip
+def test_the_damping_acts_on_the_beam_alone(payload):
+    """A payload adds mass, not damping: the damped mass matrix of a beam with a payload is the
+    bare beam's mass matrix (built without one), at any shape."""
+    theta = np.random.default_rng(3).normal(0.0, 0.4, (2, 19))
+    eff = Dimensionless(HUB, 0.0, 0.5, 0.0, 1.0).effects
+    loaded = DiscreteElastica(Dimensionless(HUB, 0.0, 0.5, 0.0, 1.0, eff, None, None,
+                                            payload.get("tip_mass", 0.0),
+                                            payload.get("tip_inertia", 0.0)), 20)  # fmt: skip
+    bare = DiscreteElastica(Dimensionless(HUB, 0.0, 0.5, 0.0, 1.0), 20)
+    Md, Bd = loaded.damping_rows(theta)
+    M, B = bare.inertia_rows(theta)
+    assert np.array_equal(Md, M) and np.array_equal(Bd, B)
+
+
+@pytest.mark.parametrize("beam", [Beam(tip_mass=4.68e-4), Beam(tip_inertia=2e-8),
+                                  Beam(tip_mass=4.68e-4, gamma=0.3)])  # fmt: skip
+def test_damping_ratio_with_a_payload_is_the_damped_eigenvalues(beam):
+    """damping_ratio (first order in the damping) against the exact damped eigenvalue of the
+    same linear model, lam^2 M + lam eta Md + K = 0: zeta = -Re lam / |lam|; and a vanishing
+    payload gives the bare beam's eta / (2 beta_1^2)."""
+    import scipy.linalg as sla
+
+    dl = Dimensionless.from_physical(beam, Drive(omega0=0.0, amplitude=0.0, f_d=1.0),
+                                     Effects())  # fmt: skip
+    model = DiscreteElastica(dl, 80)
+    M, K, _ = model.linear_operators(0.0)
+    Md = model.damping_rows(np.zeros((1, model.n)))[0][0]
+    n = model.n
+    A = np.block(
+        [
+            [np.zeros((n, n)), np.eye(n)],
+            [-np.linalg.solve(M, K), -beam.eta * np.linalg.solve(M, Md)],
+        ]
+    )
+    lam = sla.eigvals(A)
+    first = lam[np.argmin(np.abs(lam))]
+    exact = -first.real / abs(first)
+    # first order in eta: the relative error is O(zeta^2) ~ 1e-3 at the largest zeta here (0.13)
+    assert damping_ratio(beam) == pytest.approx(exact, rel=2 * exact**2 + 1e-6)
+    assert damping_ratio(Beam(tip_mass=1e-12)) == pytest.approx(Beam().zeta, rel=2e-4)

@@ -16,10 +16,10 @@ from dataclasses import dataclass, replace
 
 from ..config.checks import check_threshold
 from ..config.errors import RotbeamInputError
-from ..model.modes import resonance_frequency_hz
+from ..model.modes import damping_ratio, resonance_frequency_hz
 from ..model.params import Beam, Drive
 from ..model.secondorder import c0_root
-from ..runs.move import MoveResult
+from ..runs.move import SETTLED, MoveResult
 from ..runs.scene import Scene, SceneResult, simulate
 from ..solve.timebudget import TimeBudget
 
@@ -91,7 +91,7 @@ def judge(result: SceneResult, threshold: float = 0.10) -> Verdict:
     th = check_threshold(threshold)
     beam, drive = result.scene.beam, result.scene.drive
     f0 = resonance_frequency_hz(beam, drive.omega_max)
-    c0, ratio, branch = linear_estimate(beam.derived()["zeta"], th)
+    c0, ratio, branch = linear_estimate(damping_ratio(beam), th)
     k = dominant_harmonic(drive)
     if k > 1:  # harmonic k meets the first mode first
         ratio, branch = ratio / k, f"{branch} / {k} (harmonic {k} has the largest Euler load)"
@@ -309,7 +309,7 @@ def dominant_harmonic(drive: Drive) -> int:
 
 def _linear_start(beam: Beam, threshold: float, f0: float) -> float:
     """App. E's c_0 (or the lag branch) at the beam's zeta, times f_0 [Hz]."""
-    return linear_estimate(beam.derived()["zeta"], threshold)[1] * f0
+    return linear_estimate(damping_ratio(beam), threshold)[1] * f0
 
 
 def critical(
@@ -405,7 +405,8 @@ def judge_move(result: MoveResult, threshold: float = 0.10) -> Verdict:
     d = result.delta_rms
     settle = "does not settle in the window"
     if math.isfinite(result.settling_time_s):
-        settle = f"settles below 5 % of the peak in {result.settling_time_s:.3g} s"
+        settle = (f"settles below {100 * SETTLED:g} % of the peak in "
+                  f"{result.settling_time_s:.3g} s")  # fmt: skip
     after = (
         f"residual vibration {result.residual_ym:.3g} L after the move ({settle}; the move "
         f"lasts {result.move_s:.3g} s, the first mode's period is {1.0 / f0:.3g} s)"

@@ -70,6 +70,24 @@ class DriveLaw(ABC):
             d lam / d tau = (dOmega/dt) T^2, dimensionless.
         """
 
+    def angle(self, tau: float) -> float:
+        """The disk's angle at one instant, the integral of lam from 0 to tau (adaptive
+        quadrature; `HarmonicLaw` knows it exactly).
+
+        Parameters
+        ----------
+        tau : float
+            Time in units of T, >= 0.
+
+        Returns
+        -------
+        float
+            phi [rad]: what turns the rotating frame into the lab frame.
+        """
+        from scipy.integrate import quad
+
+        return float(quad(self.lam, 0.0, tau, limit=200)[0])
+
     @abstractmethod
     def with_omega(self, omega: float) -> DriveLaw:
         """The same profile repeated at another rate (a sweep in f_d changes only this).
@@ -220,6 +238,25 @@ class HarmonicLaw(DriveLaw):
         out = 0.0
         for k, a, ph in self.terms:
             out = out + a * (k * self.omega) * math.cos(k * self.omega * tau + ph)
+        return out
+
+    def angle(self, tau: float) -> float:
+        """The disk's angle at one instant, lam0 tau + sum_k alpha_k (cos phase_k -
+        cos(k omega tau + phase_k)) / (k omega).
+
+        Parameters
+        ----------
+        tau : float
+            Time in units of T.
+
+        Returns
+        -------
+        float
+            phi [rad]: what turns the rotating frame into the lab frame.
+        """
+        out = self.lam0 * tau
+        for k, a, ph in self.terms:
+            out = out + a * (math.cos(ph) - math.cos(k * self.omega * tau + ph)) / (k * self.omega)
         return out
 
     def with_omega(self, omega: float) -> HarmonicLaw:

@@ -105,8 +105,8 @@ class DiscreteElastica(DiscreteModel):
         return M, B
 
     def damping_rows(self, theta: np.ndarray) -> tuple[np.ndarray, np.ndarray] | None:
-        """With a tip mass, the beam's own M and B, W without the payload: the damping stays per
-        unit length of the beam.
+        """With a payload, the beam's own M and B (W without the tip mass, M without the
+        rotary inertia): the damping stays per unit length of the beam.
 
         Parameters
         ----------
@@ -116,12 +116,12 @@ class DiscreteElastica(DiscreteModel):
         Returns
         -------
         tuple of numpy.ndarray or None
-            (Md, Bd), shape (m, n, n) each, with a tip mass; None without one (eta M, which
-            holds a rotary inertia j / ds if there is one).
+            (Md, Bd), shape (m, n, n) each, with a payload; None without one (eta M).
         """
-        if self.grid.W_beam is None:
+        if self.grid.W_beam is None and not self.rotary:
             return None
-        return self._cos_sin_rows(theta, self.grid.W_beam)
+        W = self.grid.W if self.grid.W_beam is None else self.grid.W_beam
+        return self._cos_sin_rows(theta, W)
 
     @staticmethod
     def _cos_sin_rows(theta: np.ndarray, W: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

@@ -438,6 +438,21 @@ class Drive:
         """
         return self.law(1.0).lam(t)
 
+    def angle(self, t: float) -> float:
+        """The disk's angle at one instant, phi(t) = int_0^t Omega dt.
+
+        Parameters
+        ----------
+        t : float
+            Time [s] (from the first sample, for a move).
+
+        Returns
+        -------
+        float
+            phi [rad]: what turns the rotating frame into the lab frame.
+        """
+        return self.law(1.0).angle(t)
+
     def omega_dot(self, t: float) -> float:
         """The angular acceleration at one instant.
 
@@ -792,9 +807,12 @@ def check_model_range(beam: Beam, drive: Drive) -> None:
             f"allowed: C_max <= {C_MAX_LIMIT:g}"
         )
     if not e_max <= E_MAX_LIMIT:
+        accel = f"drive.amplitude = {drive.amplitude!r}, drive.f_d = {drive.f_d!r}"
+        if drive.kind != "sine":
+            accel = (f"the {drive.kind} drive's largest |dOmega/dt| "
+                     f"{drive.omega_dot_max:.4g} rad/s^2")  # fmt: skip
         raise RotbeamInputError(
-            f"E_max = G max |dOmega/dt| = {e_max:.3g} from drive.amplitude = "
-            f"{drive.amplitude!r}, drive.f_d = {drive.f_d!r}, G = {G:.3g} s^2 (beam); "
+            f"E_max = G max |dOmega/dt| = {e_max:.3g} from {accel}, G = {G:.3g} s^2 (beam); "
             f"allowed: E_max <= {E_MAX_LIMIT:g}"
         )
     if not ratio <= FD_OVER_FN_LIMIT:

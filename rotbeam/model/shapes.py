@@ -13,37 +13,10 @@ import numpy as np
 import pandas as pd
 
 
-def rotation_angle(omega0: float, amplitude: float, f_d: float, t: np.ndarray) -> np.ndarray:
-    """The disk's angle under the sine drive, phi(t) = int_0^t Omega dt.
-
-    phi = Omega_0 t + a (1 - cos(2 pi f_d t)) / (2 pi f_d): what turns the rotating frame into
-    the lab frame.
-
-    Parameters
-    ----------
-    omega0 : float
-        Mean angular velocity Omega_0 [rad/s].
-    amplitude : float
-        Velocity amplitude a [rad/s].
-    f_d : float
-        Drive frequency [Hz], > 0.
-    t : numpy.ndarray
-        Time [s], any shape.
-
-    Returns
-    -------
-    numpy.ndarray
-        phi [rad], the shape of `t`.
-    """
-    w = 2.0 * math.pi * f_d
-    return omega0 * t + amplitude * (1.0 - np.cos(w * t)) / w
-
-
 def shapes_over_period(result, frames: int | None = None) -> pd.DataFrame:
     """The centerline at the samples of a simulated scene, in both frames (the shape figures).
 
-    The lab frame turns the rotating one by `rotation_angle` of the drive's omega0, amplitude
-    and f_d (the sine drive's angle).
+    The lab frame turns the rotating one by the disk's angle, `Drive.angle`.
 
     Parameters
     ----------
@@ -73,8 +46,8 @@ def shapes_over_period(result, frames: int | None = None) -> pd.DataFrame:
         t_rel = t - result.tau[0] * scene.beam.T
         s, x, y = grid.full_shape(theta[:, k])
         X, Y = r_o + x, y
-        phi = rotation_angle(d.omega0, d.amplitude, d.f_d, np.array(t))
-        c, sn = math.cos(float(phi)), math.sin(float(phi))
+        phi = d.angle(float(t))
+        c, sn = math.cos(phi), math.sin(phi)
         for j in range(s.size):
             rows.append({
                 "frame": frame, "t_s": t_rel, "phase": t_rel * d.f_d, "s": s[j],

@@ -19,7 +19,11 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..model.base import DiscreteModel
-from ..model.modes import dimensionless_frequencies, linear_forced_response
+from ..model.modes import (
+    dimensionless_frequencies,
+    first_mode_damped_share,
+    linear_forced_response,
+)
 from ..model.params import Dimensionless
 from .floquet import FloquetResult, default_steps
 from .numerics import Numerics
@@ -203,24 +207,9 @@ def slowest_decay_rate(model: DiscreteModel) -> float:
     if model.damping_rows(np.zeros((1, model.n))) is None:
         w1 = float(dimensionless_frequencies(lam_min, dl.hub_ratio, 1, N, ef.softening)[0])
     else:
-        w1, share = _first_mode_damped_share(model, lam_min)
+        w1, share = first_mode_damped_share(model, lam_min)
         half = half * share
     return half - math.sqrt(half * half - w1 * w1) if w1 < half else half
-
-
-def _first_mode_damped_share(model: DiscreteModel, lam: float) -> tuple[float, float]:
-    """First frequency w1 at `lam`, and the share of the first mode's mass that is damped:
-    psi' Md phi / psi' M phi with phi, psi its right and left eigenvectors (the first-order
-    change of its decay rate with the damping's mass matrix, exact for Md = M)."""
-    import scipy.linalg as sla
-
-    mass, stiffness, _ = model.linear_operators(lam)
-    damped = model.damping_rows(np.zeros((1, model.n)))[0][0]
-    w2, left, right = sla.eig(stiffness, mass, left=True, right=True)
-    k = int(np.argmin(np.real(w2)))
-    phi, psi = right[:, k], left[:, k].conj()
-    share = float(np.real((psi @ damped @ phi) / (psi @ mass @ phi)))
-    return math.sqrt(max(float(np.real(w2[k])), 0.0)), share
 
 
 def collocation_window(
