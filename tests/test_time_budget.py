@@ -97,3 +97,17 @@ def test_richardson_grids_share_one_budget():
                    time_budget=TimeBudget(1e-9))  # fmt: skip
     assert not res.converged and "time budget" in res.dynamic.message
     assert res.extrapolation["extrapolated"] is False
+
+
+def test_fit_stops_at_the_budget():
+    """`identify` with its budget spent raises FitOutOfTime (not a penalty the trust region
+    would walk around) after no steady state."""
+    import numpy as np
+
+    from rotbeam.analysis.identify import FitOutOfTime, identify
+    from rotbeam.analysis.measurements import ResonanceCurve
+
+    f = np.linspace(3.0, 9.0, 5)
+    curve = ResonanceCurve(f_d=f, rms=0.01 / (1.0 + (f - 7.0) ** 2), rms_std=None)
+    with pytest.raises(FitOutOfTime, match="cut the fit after 0 steady states"):
+        identify(curve, 5.0, time_budget=TimeBudget(1e-9))

@@ -22,6 +22,7 @@ from ..model.modes import resonance_frequency_hz
 from ..model.params import Beam, Drive, Effects
 from ..runs.scene import Scene, simulate
 from ..solve.numerics import Numerics
+from ..solve.timebudget import TimeBudget
 from .measurements import ResonanceCurve
 
 FITTABLE = ("L", "h", "b", "E", "rho", "R", "gamma")
@@ -39,6 +40,10 @@ PENALTY = 10.0
 class IdentifyFailed(Exception):
     """The fit could not be carried out (a model run without steady state, a beam out of
     range); the message says where."""
+
+
+class FitOutOfTime(IdentifyFailed):
+    """The time budget ran out before the fit converged; the message says after how many runs."""
 
 
 def parse_names(text: str) -> tuple[str, ...]:
@@ -90,6 +95,7 @@ class ResonanceModel:
     runs: int = 0
     evaluations: int = 0
     progress: Callable[[], None] | None = None  #: called after every steady state
+    time_budget: TimeBudget | None = None  #: the whole fit's; None: numerics.max_seconds a run
     _guess: list = field(default_factory=list)
     _cache: dict = field(default_factory=dict)
 
@@ -104,7 +110,12 @@ class ResonanceModel:
         for k, f in enumerate(self.f_d):
             scene = Scene(beam, Drive(self.omega0, self.amplitude, float(f)), self.effects,
                           self.numerics)  # fmt: skip
-            res = simulate(scene, guess=self._guess[k])
+            if self.time_budget is not None and self.time_budget.spent():
+                raise FitOutOfTime(
+                    self.time_budget.cut(f"the fit after {self.runs} steady states")
+                    + f" (last trial {_describe(beam)})"
+                )
+            res = simulate(scene, guess=self._guess[k], time_budget=self.time_budget)
             self.runs += 1
             if self.progress is not None:
                 self.progress()
@@ -247,6 +258,7 @@ def identify(
     effects: Effects | None = None,
     numerics: Numerics | None = None,
     progress: Callable[[], None] | None = None,
+    time_budget: TimeBudget | None = None,
 ) -> Identification:
     """Least-squares fit of beam parameters to a measured resonance curve, with intervals.
 
@@ -273,6 +285,8 @@ def identify(
         Numerics of every run (default: FIT_NUMERICS, N = 20).
     progress : callable or None
         Called after every steady state of the fit.
+    time_budget : TimeBudget or None
+        The wall-time budget of the whole fit; None: numerics.max_seconds for it.
 
     Returns
     -------
@@ -284,12 +298,14 @@ def identify(
     RotbeamInputError
         If the curve has no more points than there are parameters.
     IdentifyFailed
-        If the fit cannot be carried out: no steady state at the start or the optimum, or a beam
-        out of range.
+        If the fit cannot be carried out: no steady state at the start or the optimum, a beam
+        out of range, or the time budget spent first (`FitOutOfTime`).
     """
     t0 = time.perf_counter()
     model = ResonanceModel(curve.f_d, omega0, amplitude, effects or Effects(),
-                           numerics or FIT_NUMERICS, progress=progress)  # fmt: skip
+                           numerics or FIT_NUMERICS, progress=progress,
+                           time_budget=time_budget or TimeBudget(
+                               (numerics or FIT_NUMERICS).max_seconds))  # fmt: skip
     n, p = curve.f_d.size, len(names)
     if n <= p:
         raise RotbeamInputError(f"{n} points cannot fit {p} parameters; need >= {p + 1}")
@@ -330,6 +346,8 @@ def _residuals(curve: ResonanceCurve, names: tuple[str, ...], start: Beam, x0: n
     def resid(u: np.ndarray, strict: bool = False) -> np.ndarray:
         try:
             return (model(_with(start, names, x0 * np.exp(u))) - curve.rms) / w
+        except FitOutOfTime:
+            raise
         except IdentifyFailed as exc:
             if strict:
                 raise
