@@ -115,7 +115,7 @@ def test_verification_rejects_an_inaccurate_orbit(monkeypatch):
     until the certificate passes and lands on the resolved steady state, not on the coarse
     collocation; with no refinement allowed, the orbit fails the one-period check too and time
     stepping at the tight tolerance reaches the same state."""
-    import rotbeam.solve.steady as steady
+    import rotbeam.solve.steady as steady_module
 
     dl = dl_of(5.0, 7.0)
     coarse = steady(dl, Numerics(N=20, integrate=False, tail_tol=0.05))
@@ -124,7 +124,7 @@ def test_verification_rejects_an_inaccurate_orbit(monkeypatch):
     refined = steady(dl, num)
     assert refined.converged and refined.periods == 0 and refined.periodic.M > 17
     assert "certified by the monodromy" in refined.message
-    monkeypatch.setattr(steady, "REFINE_M_MAX", 17)
+    monkeypatch.setattr(steady_module, "REFINE_M_MAX", 17)
     checked = steady(dl, num)
     assert checked.converged and checked.periods > 1 and "verified" not in checked.message
     assert checked.message.startswith("not certified by the monodromy")  # nor by its monodromy

@@ -88,7 +88,7 @@ def test_a_point_past_the_fold_is_left_by_time_stepping(arm_a3):
     for pt, stays in ((pts[i - 2], True), (pts[i + 3], False)):
         mu = pt.floquet.multipliers[0]
         assert stays or (abs(mu.imag) < 1e-9 and mu.real > 1.0)
-        X = pt.x.reshape(pr.M, pr.N - 1)
+        X = pt.x.reshape(pr.M, pr.model.n)
         z0 = np.concatenate([X[0], (pr.collocation(pt.p).D @ X)[0]])
         dl = Dimensionless.from_physical(
             Beam(), Drive(omega0=spec.omega0, f_d=pt.p, amplitude=spec.amplitude), Effects()

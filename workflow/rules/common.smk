@@ -1,5 +1,6 @@
 import functools
 import hashlib
+import os
 import importlib.metadata
 import platform
 import sys
@@ -151,6 +152,26 @@ def all_targets():
         f"results/reproduction/c_hypotheses.{e}" for e in ("csv", "md", "pdf", "png")
     ]
     return out
+
+
+# The scene files (CSV) that user scenes name are relative to config/; CONFIG_DIR is that folder
+# relative to the working directory, so the rule's params do not depend on where the workflow is.
+CONFIG_DIR = os.path.relpath(Path(workflow.basedir) / "config")
+
+
+def user_scene_files():
+    """The CSV files the user scenes read (a move, a sampled profile): the rule's inputs, so an
+    edited file reruns it."""
+    out = []
+    for spec in (config.get("user_scenes") or {}).values():
+        drive = (spec or {}).get("drive", {}) if isinstance(spec, dict) else {}
+        for key in ("move", "profile"):
+            value = drive.get(key) if isinstance(drive, dict) else None
+            if isinstance(value, dict):
+                value = value.get("file")
+            if isinstance(value, str):
+                out.append(os.path.join(CONFIG_DIR, value))
+    return sorted(set(out))
 
 
 # --- paper against reproduction (rules/reproduction.smk) ---

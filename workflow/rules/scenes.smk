@@ -2,6 +2,8 @@
 
 
 rule user_scenes:
+    input:
+        user_scene_files(),
     output:
         csv="results/scenes/scenes.csv",
         md=report(
@@ -25,6 +27,6 @@ rule user_scenes:
         code=code_version("user_scenes"),
         scenes=config.get("user_scenes") or {},
         threshold=config["main_threshold"],
-        base=str(Path(workflow.basedir) / "config"),
+        base=CONFIG_DIR,
     script:
         "../scripts/user_scenes.py"
