@@ -35,6 +35,7 @@ from ..model.params import (
 )
 from ..solve.extrapolation import richardson
 from ..solve.numerics import Numerics
+from ..solve.periodic import Neighbour
 from ..solve.quasistatic import quasistatic_series
 from ..solve.steady import SteadyState, steady_state
 
@@ -281,13 +282,34 @@ EXTRAPOLATION_MAX_CHANGE = 0.1
 def simulate(
     scene: Scene,
     progress: Callable[[int, float], None] | None = None,
-    guess: np.ndarray | None = None,
+    guess: np.ndarray | Neighbour | None = None,
 ) -> SceneResult:
     """Dynamic steady state and quasi-static response sampled at the same instants.
 
-    `guess` seeds the periodic collocation (the previous point's orbit along a sweep).  With
-    numerics.extrapolate the RMS values are Richardson-extrapolated from N and N // 2 (the
+    With numerics.extrapolate the RMS values are Richardson-extrapolated from N and N // 2 (the
     discretisation is second order in 1/N); the time series stay those of grid N.
+
+    Parameters
+    ----------
+    scene : Scene
+        The beam, its periodic drive, the effects and the numerics.
+    progress : callable or None
+        progress(period, transient bound) after every period of time stepping.
+    guess : numpy.ndarray, Neighbour or None
+        Seeds the periodic collocation: an orbit (M, n), or the previous point's along a sweep
+        (`rotbeam.solve.periodic.Neighbour`, whose state also starts time stepping where no
+        orbit continues it).
+
+    Returns
+    -------
+    SceneResult
+        Both responses over the RMS window, their RMS and Delta RMS, the steady state's
+        status and multipliers, and the extrapolation's note.
+
+    Raises
+    ------
+    RotbeamInputError
+        For a single move (it has no periodic steady state).
     """
     if scene.drive.move is not None:
         raise RotbeamInputError(
@@ -302,7 +324,9 @@ def simulate(
     if not fine.converged:  # nothing to extrapolate: the coarse run would only cost time
         note = f"not extrapolated: no steady state at N = {num.N} (N = {Nc} not run)"
         return replace(fine, extrapolation={"N_coarse": Nc, "extrapolated": False, "note": note})
-    coarse_guess = guess[:, 1::2] if guess is not None and num.N % 2 == 0 else None
+    coarse_guess = None
+    if guess is not None and num.N % 2 == 0:  # the coarse grid's nodes are every second one
+        coarse_guess = guess.coarse() if isinstance(guess, Neighbour) else guess[:, 1::2]
     coarse = _simulate_grid(
         Scene(scene.beam, scene.drive, scene.effects, replace(num, N=Nc, extrapolate=False)),
         None,
@@ -336,7 +360,7 @@ def simulate(
 def _simulate_grid(
     scene: Scene,
     progress: Callable[[int, float], None] | None = None,
-    guess: np.ndarray | None = None,
+    guess: np.ndarray | Neighbour | None = None,
 ) -> SceneResult:
     t0 = time.perf_counter()
     num = scene.numerics

@@ -23,7 +23,7 @@ from ..model.modes import dimensionless_frequencies, linear_forced_response
 from ..model.params import Dimensionless
 from .floquet import FloquetResult, default_steps
 from .numerics import Numerics
-from .periodic import PeriodicResult, refined, solve_periodic_adaptive
+from .periodic import Neighbour, PeriodicResult, as_neighbour, refined, solve_periodic_adaptive
 from .quasistatic import quasistatic_series
 from .spectral import trig_interpolate
 from .stability import (
@@ -92,7 +92,7 @@ def initial_state(
     model: DiscreteModel,
     start: str,
     tail_tol: float = 1e-3,
-    guess: np.ndarray | None = None,
+    guess: np.ndarray | Neighbour | None = None,
 ) -> tuple[np.ndarray, PeriodicResult | None]:
     """The state time stepping starts from at tau = 0.
 
@@ -101,13 +101,15 @@ def initial_state(
     model : DiscreteModel
         The model and its drive.
     start : str
-        "periodic" (the collocated orbit; the quasi-static state when collocation fails),
-        "linear" (the linearised forced response), "quasistatic" (the static equilibrium and its
-        rate, by central differences) or "rest" (the straight beam at rest).
+        "periodic" (the collocated orbit; when collocation fails, the neighbour's state if the
+        guess carries one, else the quasi-static state), "linear" (the linearised forced
+        response), "quasistatic" (the static equilibrium and its rate, by central differences)
+        or "rest" (the straight beam at rest).
     tail_tol : float
         Harmonic tail the collocated orbit must reach (`solve_periodic_adaptive`).
-    guess : numpy.ndarray or None
-        An orbit (M, n) that seeds the collocation.
+    guess : numpy.ndarray, Neighbour or None
+        An orbit (M, n) that seeds the collocation, or a neighbouring scene's
+        (`rotbeam.solve.periodic.Neighbour`).
 
     Returns
     -------
@@ -120,9 +122,12 @@ def initial_state(
     if start == "rest":
         return np.zeros(2 * n), None
     if start == "periodic":
-        res = solve_periodic_adaptive(model, tail_tol=tail_tol, guess=guess)
+        seed = as_neighbour(guess, dl.omega)
+        res = solve_periodic_adaptive(model, tail_tol=tail_tol, guess=seed)
         if res.converged:
             return np.concatenate([res.theta[:, 0], res.theta_t[:, 0]]), res
+        if seed is not None and seed.state is not None:  # where the neighbour's beam is
+            return np.array(seed.state, dtype=float), None
         start = "quasistatic"  # fall back to a physical state; the time stepping still decides
     if start == "linear":
         theta, rate = np.zeros(n), np.zeros(n)  # Theta and Theta_t at tau = 0
@@ -137,7 +142,7 @@ def initial_state(
 def starting_state(
     model: DiscreteModel,
     num: Numerics,
-    guess: np.ndarray | None,
+    guess: np.ndarray | Neighbour | None,
     state0: np.ndarray | None,
 ) -> tuple[np.ndarray, PeriodicResult | None]:
     """The state time stepping starts from: `state0` when given, else `initial_state`.
@@ -148,8 +153,8 @@ def starting_state(
         The model and its drive.
     num : Numerics
         start and tail_tol.
-    guess : numpy.ndarray or None
-        An orbit (M, n) that seeds the collocation.
+    guess : numpy.ndarray, Neighbour or None
+        An orbit (M, n) that seeds the collocation, or a neighbouring scene's.
     state0 : numpy.ndarray or None
         (Theta, Theta_t) at tau = 0, shape (2 n,).
 
@@ -779,7 +784,7 @@ def steady_state(
     numerics: Numerics | None = None,
     progress: Callable[[int, float], None] | None = None,
     response_scale: float | None = None,
-    guess: np.ndarray | None = None,
+    guess: np.ndarray | Neighbour | None = None,
     state0: np.ndarray | None = None,
 ) -> SteadyState:
     """The periodic steady state of `model` under its drive, sampled over the RMS window.
@@ -802,8 +807,10 @@ def steady_state(
         progress(period, transient bound) after every period of time stepping.
     response_scale : float or None
         Size of the response behind the absolute tolerance (the quasi-static max |Theta|).
-    guess : numpy.ndarray or None
-        An orbit (M, n) that seeds the collocation (continuation along a sweep).
+    guess : numpy.ndarray, Neighbour or None
+        An orbit (M, n) that seeds the collocation, or a neighbouring scene's
+        (`rotbeam.solve.periodic.Neighbour`: continuation along a sweep; where no orbit
+        continues it, time stepping starts from the neighbour's state).
     state0 : numpy.ndarray or None
         (Theta, Theta_t) at tau = 0 instead of `numerics.start`: time stepping from where the
         beam is (no collocation), e.g. the previous drive frequency's final `state` in a sweep
