@@ -21,7 +21,7 @@ import numpy as np
 from ..model.base import DiscreteModel
 from ..model.modes import dimensionless_frequencies, linear_forced_response
 from ..model.params import Dimensionless
-from .floquet import FloquetResult, default_steps
+from .floquet import STEP_LADDER, FloquetResult
 from .numerics import Numerics
 from .periodic import Neighbour, PeriodicResult, as_neighbour, refined, solve_periodic_adaptive
 from .quasistatic import quasistatic_series
@@ -32,6 +32,7 @@ from .stability import (
     leave_orbit,
     monodromy_certificate,
     orbit_stability,
+    reported_multipliers,
     stability_note,
     window_stability,
 )
@@ -284,12 +285,13 @@ def _from_collocation(
     model: DiscreteModel, num: Numerics, res: PeriodicResult, t0: float
 ) -> SteadyState:
     """SteadyState straight from the collocation (no time stepping): `integrate=False`."""
-    fl = orbit_stability(model, res)
+    fl = orbit_stability(model, res, candidate=True)
     ok = res.converged and res.harmonic_tail <= num.tail_tol and model.eta > 0.0
     msg = f"collocation M={res.M}: {res.message}, harmonic tail {res.harmonic_tail:.2g}"
     cert = _certificate(fl, res, num, model.dl)
     if cert is not None:
         msg += f"; {cert.describe()}"
+    fl = reported_multipliers(model, res, fl)
     msg += stability_note(fl)
     unstable = ok and fl is not None and fl.unstable
     if unstable:
@@ -319,8 +321,8 @@ def accept_certified(
 ) -> tuple[SteadyState | None, str, Certificate | None]:
     """The collocated orbit as the steady state when its monodromy certificate holds.
 
-    An ambiguous certificate (the first try's Floquet steps cannot tell) is decided again with
-    the full step count.
+    An ambiguous certificate (the Floquet steps taken cannot tell) is decided again with the
+    next step counts of the ladder (`rotbeam.solve.floquet.STEP_LADDER`).
 
     Parameters
     ----------
@@ -347,13 +349,14 @@ def accept_certified(
     if num.certify != "monodromy" or periodic.harmonic_tail > num.tail_tol:
         return None, "", None
     cert = _certificate(fl, periodic, num, model.dl)
-    if cert is not None and cert.ambiguous:  # the first try's steps cannot tell: all of them
-        fl = orbit_stability(model, periodic, steps=default_steps(periodic.M))
+    while cert is not None and cert.ambiguous and fl.steps < STEP_LADDER[-1]:
+        fl = orbit_stability(model, periodic, after=fl, candidate=True)  # more steps decide
         cert = _certificate(fl, periodic, num, model.dl)
     if cert is None:
         return None, "", None
     if not cert.certified:
         return None, f"not certified by the monodromy ({cert.describe()}); ", cert
+    fl = reported_multipliers(model, periodic, fl)
     message = (
         f"collocation orbit (M={periodic.M}, harmonic tail {periodic.harmonic_tail:.2g}) "
         f"certified by the monodromy ({cert.describe()})" + stability_note(fl)
@@ -768,7 +771,7 @@ def certify_refining(
     state, why_not, cert = accept_certified(model, num, periodic, fl, t0)
     while state is None and why_not and 2 * periodic.M - 1 <= REFINE_M_MAX:
         finer = refined(model, periodic)
-        finer_fl = orbit_stability(model, finer)
+        finer_fl = orbit_stability(model, finer, candidate=True)
         if finer_fl is None or not finer_fl.stable:
             break
         previous = cert.offset
@@ -827,7 +830,7 @@ def steady_state(
     z, periodic = starting_state(model, num, guess, state0)
     if not num.integrate and periodic is not None:
         return _from_collocation(model, num, periodic, t0)
-    orbit_fl = orbit_stability(model, periodic)  # an unstable orbit is left, not verified
+    orbit_fl = orbit_stability(model, periodic, candidate=True)  # an unstable one is left
     unstable_orbit = orbit_fl is not None and orbit_fl.unstable
     from_orbit = periodic is not None and periodic.converged and not unstable_orbit
     why_not = ""
@@ -842,7 +845,7 @@ def steady_state(
     stepper = PeriodStepper(model, num, tol, deadline=t0 + num.max_seconds)
     run = march(stepper, z, from_orbit, progress)
     win = rms_window(stepper, run, periodic, from_orbit)
-    status, message, fl = reported_stability(model, num, win, orbit_fl, from_orbit)
+    status, message, fl = reported_stability(model, num, win, orbit_fl, from_orbit, periodic)
     return SteadyState(
         tau=win.tau,
         theta=win.theta,
@@ -868,6 +871,7 @@ def reported_stability(
     win: Window,
     orbit_fl: FloquetResult | None,
     from_orbit: bool,
+    periodic: PeriodicResult | None = None,
 ) -> tuple[int, str, FloquetResult | None]:
     """Status, message and multipliers of the reported state: the collocated orbit's when it was
     verified in one period, else those of the orbit time stepping settled on (an unstable one is
@@ -885,6 +889,9 @@ def reported_stability(
         The collocated orbit's multipliers, if any.
     from_orbit : bool
         Whether the march started from the collocated orbit.
+    periodic : PeriodicResult or None
+        The collocated orbit: where its multipliers are the ones reported, their step count
+        goes on until |mu|max stands to SPREAD_TOL (`reported_multipliers`).
 
     Returns
     -------
@@ -904,5 +911,7 @@ def reported_stability(
             message += "; but the orbit reached is unstable (a slow transient, not a steady state)"
     if orbit_fl is not None and orbit_fl.unstable:
         message = f"collocated orbit unstable ({orbit_fl.crossing()}); {message}"
+    if (fl is None or fl is orbit_fl) and periodic is not None:
+        fl = reported_multipliers(model, periodic, orbit_fl)
     message += stability_note(fl if fl is not None else orbit_fl)
     return status, message, fl if fl is not None else orbit_fl
