@@ -461,19 +461,22 @@ def _amplitude_continuation(model: DiscreteModel, M: int, rtol: float, steps: in
 #: the frequency substeps of `continued`: the step from the neighbour is halved, at most this
 #: many times (down to 1/16 of it), while Newton fails
 SUBSTEP_HALVINGS = 4
-#: Newton steps a substep may take before it counts as failed (from a near orbit Newton meets
-#: its tolerance in 3-6)
+#: Newton steps a substep, or the start from the neighbour on its own number of instants, may
+#: take before it counts as failed (from a near orbit Newton meets its tolerance in 3-6)
 SUBSTEP_MAXITER = 12
 
 
 def continued(model: DiscreteModel, seed: Neighbour, M0: int, rtol: float) -> PeriodicResult | None:
-    """The orbit of `model` continued from a neighbouring scene's.
+    """The orbit of `model` continued from a neighbouring scene's, at M0 instants where it is
+    found there.
 
     Newton starts from the neighbour's orbit at M0 instants, then at the neighbour's own
     number when that is larger; where neither converges, the frequency is approached from the
     neighbour's in substeps, halved while Newton fails (`SUBSTEP_HALVINGS`).  A fold of the
     branch between the two frequencies stops all of them: the orbit followed does not reach
-    this frequency.
+    this frequency.  An orbit found on more instants than M0 is solved again on M0 from its own
+    interpolant (`_on`), so that the sizes taken from there are those a scene solved alone
+    takes.
 
     Parameters
     ----------
@@ -489,15 +492,18 @@ def continued(model: DiscreteModel, seed: Neighbour, M0: int, rtol: float) -> Pe
     Returns
     -------
     PeriodicResult or None
-        The first orbit Newton converged to; None when none did.
+        The orbit Newton converged to; None when it converged nowhere.
     """
     omega = model.dl.omega
-    sizes = [M0] + ([seed.M] if seed.M > M0 else [])
-    for M in sizes:
-        res = solve_periodic(model, M, guess=seed.at(M), rtol=rtol)
+    res = solve_periodic(model, M0, guess=seed.at(M0), rtol=rtol)
+    if res.converged:
+        return res
+    M = max(M0, seed.M)
+    if M > M0:
+        res = solve_periodic(model, M, guess=seed.at(M), rtol=rtol, maxiter=SUBSTEP_MAXITER)
         if res.converged:
-            return res
-    M, X, w = sizes[-1], seed.at(sizes[-1]), seed.omega
+            return _on(model, res, M0, rtol)
+    X, w = seed.at(M), seed.omega
     step = (omega - w) / 2.0
     for _ in range(SUBSTEP_HALVINGS):
         while abs(omega - w) > 1e-12 * abs(omega):
@@ -508,9 +514,18 @@ def continued(model: DiscreteModel, seed: Neighbour, M0: int, rtol: float) -> Pe
                 break
             X, w = res.theta.T, target
             if target == omega:
-                return res
+                return _on(model, res, M0, rtol)
         step /= 2.0
     return None
+
+
+def _on(model: DiscreteModel, res: PeriodicResult, M0: int, rtol: float) -> PeriodicResult:
+    """The orbit `res` solved again on M0 instants from its interpolant; `res` itself where
+    Newton does not converge there (M0 does not resolve it)."""
+    if res.M == M0:
+        return res
+    coarse = solve_periodic(model, M0, guess=trig_interpolate(res.theta.T, M0), rtol=rtol)
+    return coarse if coarse.converged else res
 
 
 def solve_periodic_adaptive(
