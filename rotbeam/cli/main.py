@@ -14,6 +14,7 @@ from .progress import add_quiet_flag
 #: command -> module of rotbeam.cli that parses and runs it
 COMMANDS = {
     "simulate": "simulate",
+    "sweep": "sweep",
     "critical": "critical",
     "effects": "effects",
     "modes": "modes",
