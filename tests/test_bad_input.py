@@ -110,6 +110,39 @@ CLI_CASES = {
         ["simulate", "--scene", "/nonexistent/s.yaml"], ["scene file", "/nonexistent/s.yaml"]
     ),
     "fd value missing": (["simulate", "--omega0", "5", "--fd"], ["--fd", "expected one argument"]),
+    # a sweep's line
+    "sweep fd-min missing": (
+        ["sweep", "--omega0", "5", "--fd-max", "3"], ["--fd-min", "missing", "> 0"]
+    ),
+    "sweep fd-max not above fd-min": (
+        ["sweep", "--omega0", "5", "--fd-min", "3", "--fd-max", "3"],
+        ["--fd-max", "3.0", "> --fd-min"],
+    ),
+    "sweep fd-min zero": (
+        ["sweep", "--omega0", "5", "--fd-min", "0", "--fd-max", "3"], ["--fd-min", "0.0", "> 0"]
+    ),
+    "sweep one point": (
+        ["sweep", "--omega0", "5", "--fd-min", "1", "--fd-max", "3", "--points", "1"],
+        ["--points", "1", ">= 2"],
+    ),
+    "sweep points text": (
+        ["sweep", "--omega0", "5", "--fd-min", "1", "--fd-max", "3", "--points", "x"],
+        ["--points", "'x'", "integer"],
+    ),
+    "sweep omega0 missing": (
+        ["sweep", "--fd-min", "1", "--fd-max", "3"], ["drive.omega0", "missing", "--omega0"]
+    ),
+    "sweep out suffix": (
+        ["sweep", "--omega0", "5", "--fd-min", "1", "--fd-max", "3", "--out", "x.txt"],
+        ["--out", "'x.txt'", ".csv"],
+    ),
+    "sweep effects auto": (
+        ["sweep", "--omega0", "5", "--fd-min", "1", "--fd-max", "3", "--effects", "auto"],
+        ["effects: auto", "allowed", "list of effects"],
+    ),
+    "sweep takes no --fd": (
+        ["sweep", "--omega0", "5", "--fd", "2"], ["--fd", "could match --fd-min, --fd-max"]
+    ),
     # unknown
     "unknown flag": (SIM + ["--bogus", "3"], ["--bogus", "3", "unrecognized", "--help"]),
     "unknown command": (["frob"], ["'frob'", "simulate", "modes"]),

@@ -18,9 +18,9 @@ from rotbeam.solve.continuation import FirstOrderProblem, continue_branch
 from rotbeam.solve.floquet import (
     FIRST_STEPS,
     SPREAD_TOL,
+    STEP_LADDER,
     FloquetResult,
     beam_floquet,
-    default_steps,
     orbit_floquet,
 )
 from rotbeam.solve.numerics import Numerics
@@ -71,8 +71,8 @@ def test_parametrically_modulated_beam_keeps_mass_proportional_decay():
 
 @pytest.mark.slow
 def test_monodromy_against_finite_differences_of_the_period_map():
-    """Full nonlinear model below resonance (5 rad/s, 4 Hz, max |theta| 0.15): Phi at the full
-    2 M steps against central differences of the time-stepped one-period map (Radau, rtol 1e-8,
+    """Full nonlinear model below resonance (5 rad/s, 4 Hz, max |theta| 0.15): Phi at 2 M
+    steps against central differences of the time-stepped one-period map (Radau, rtol 1e-8,
     eps 1e-4).  Measured: 1.4e-4 of max |Phi| (the differences' own floor is 4e-5) and |mu|max
     to 7e-7.  The default step count gives |mu|max as well.  N = 4 keeps the 12 perturbed runs
     affordable: a perturbation excites the high-frequency modes, which mass-proportional
@@ -82,7 +82,7 @@ def test_monodromy_against_finite_differences_of_the_period_map():
     model = DiscreteElastica(dl, N)
     res = solve_periodic_adaptive(model, tail_tol=1e-6)
     assert res.converged and res.harmonic_tail < 1e-6
-    fl = beam_floquet(model, res.theta, res.theta_t, steps=default_steps(res.M))
+    fl = beam_floquet(model, res.theta, res.theta_t, steps=2 * res.M)
     n = model.n
 
     def rhs(t, z):
@@ -288,23 +288,45 @@ def test_first_try_kept_on_calm_orbits_within_its_tolerance_of_converged(omega0,
     dl, model, res = _beam_orbit(omega0, f_d)
     fl = beam_floquet(model, res.theta, res.theta_t)
     converged = beam_floquet(model, res.theta, res.theta_t, steps=16 * res.M)
-    assert fl.steps == FIRST_STEPS < default_steps(res.M)
+    assert fl.steps == FIRST_STEPS
     assert fl.coarse is not None and fl.coarse.steps == FIRST_STEPS // 3
     assert abs(fl.max_abs - converged.max_abs) <= SPREAD_TOL
     assert fl.spread <= SPREAD_TOL
 
 
-def test_resonant_orbit_takes_the_full_step_count():
+def test_resonant_orbit_climbs_the_ladder_within_its_tolerance_of_converged():
     """At resonance (5 rad/s, 7 Hz: the tip swings 0.27 L and J(t) varies fast) the first try
-    and its coarse product disagree, so the monodromy takes default_steps(M), as when the count
-    is given, to the bit."""
+    and its coarse product disagree, so the monodromy takes the counts of STEP_LADDER in turn:
+    the one it keeps was checked against the count before it, and its |mu|max is within
+    SPREAD_TOL of the same rule converged in the step count (3000 steps)."""
     dl, model, res = _beam_orbit(5.0, 7.0)
     fl = beam_floquet(model, res.theta, res.theta_t)
-    fixed = beam_floquet(model, res.theta, res.theta_t, steps=default_steps(res.M))
-    assert fl.steps == default_steps(res.M) > FIRST_STEPS
-    assert fl.coarse is None
+    assert fl.steps in STEP_LADDER[1:]
+    i = STEP_LADDER.index(fl.steps)
+    assert fl.coarse is not None and fl.coarse.steps == STEP_LADDER[i - 1]
+    assert fl.spread <= SPREAD_TOL
+    fixed = beam_floquet(model, res.theta, res.theta_t, steps=fl.steps)
     np.testing.assert_array_equal(fl.monodromy, fixed.monodromy)
-    np.testing.assert_array_equal(fl.defect, fixed.defect)
+    converged = beam_floquet(model, res.theta, res.theta_t, steps=3000)
+    assert abs(fl.max_abs - converged.max_abs) <= SPREAD_TOL
+
+
+def test_a_resonant_step_count_is_not_taken_on_trust():
+    """The exponential midpoint rule's error peaks at step counts that alias a bending mode
+    onto a low harmonic of the orbit: at 5 rad/s, 8.31 Hz (N = 40) 33 and 66 steps put |mu|max
+    4e-3 off, whatever M the orbit has (measured the same at M = 17, 33, 65).  The ladder's
+    counts are checked against each other, and what it keeps is within SPREAD_TOL of the rule
+    converged in the step count."""
+    dl = Dimensionless.from_physical(Beam(), Drive(omega0=5.0, f_d=1 + 19 * 15 / 39), Effects())
+    model = DiscreteElastica(dl, 40)
+    res = solve_periodic(model, 33)
+    assert res.converged
+    converged = beam_floquet(model, res.theta, res.theta_t, steps=2000)
+    for steps in (33, 66):  # the peaks: as a fixed count they are far off
+        off = beam_floquet(model, res.theta, res.theta_t, steps=steps).max_abs - converged.max_abs
+        assert abs(off) > 1e-3
+    fl = beam_floquet(model, res.theta, res.theta_t)
+    assert abs(fl.max_abs - converged.max_abs) <= SPREAD_TOL
 
 
 def _synthetic(defect, coarse_defect):
@@ -329,10 +351,11 @@ def test_certificate_adds_the_coarse_spread(limit, certified, ambiguous):
     assert (cert.certified, cert.ambiguous) == (certified, ambiguous)
 
 
-def test_ambiguous_certificate_is_decided_with_the_full_step_count(monkeypatch):
-    """A limit put between the first try's offset and offset + spread: `certified` computes the
-    monodromy again with default_steps(M), whose offset (no spread) is inside the limit, and
-    accepts the orbit with that monodromy (the first try alone would have refused it)."""
+def test_ambiguous_certificate_is_decided_with_more_steps(monkeypatch):
+    """A limit put between the first try's offset and offset + spread: `accept_certified`
+    goes on to the next count of the ladder, whose offset and spread (against the first try)
+    are inside the limit, and accepts the orbit with that monodromy (the first try alone would
+    have refused it)."""
     import rotbeam.solve.stability as stability
 
     dl, model, res = _beam_orbit(50.0, 10.0)
@@ -345,9 +368,22 @@ def test_ambiguous_certificate_is_decided_with_the_full_step_count(monkeypatch):
     monkeypatch.setattr(stability, "CERTIFICATE_SAFETY", safety)
     assert monodromy_certificate(fl, res.theta, ss_tol, wref).ambiguous
     state, _, _ = accept_certified(model, Numerics(N=12, ss_tol=ss_tol), res, fl, 0.0)
-    full = beam_floquet(model, res.theta, res.theta_t, steps=default_steps(res.M))
-    assert monodromy_certificate(full, res.theta, ss_tol, wref).certified
-    assert state is not None and state.floquet.steps == default_steps(res.M)
+    finer = orbit_floquet(None, np.concatenate([res.theta, res.theta_t]).T, dl.period,
+                          steps=STEP_LADDER[1], rows=_rows(model))  # fmt: skip
+    assert state is not None and state.floquet.steps == STEP_LADDER[1]
+    np.testing.assert_array_equal(state.floquet.monodromy, finer.monodromy)
+    assert monodromy_certificate(state.floquet, res.theta, ss_tol, wref).certified
+
+
+def _rows(model):
+    """The beam's batched right-hand sides and Jacobians (as `beam_floquet` builds them)."""
+    n = model.n
+
+    def rows(t, Z):
+        lam, lam_dot = model.drive_rows(t)
+        return model.first_order_rows(Z[:, :n], Z[:, n:], lam, lam_dot)
+
+    return rows
 
 
 def test_failed_certificate_refines_the_orbit_before_time_stepping(monkeypatch):

@@ -1,5 +1,5 @@
-"""The command line: `rotbeam simulate`, `critical`, `effects`, `modes`, `bench`, `damping` and
-`identify`, one module each; `rotbeam --version`; `python -m rotbeam`."""
+"""The command line: `rotbeam simulate`, `sweep`, `critical`, `effects`, `modes`, `bench`,
+`damping` and `identify`, one module each; `rotbeam --version`; `python -m rotbeam`."""
 
 from .main import main
 

@@ -3,17 +3,28 @@ on stderr and exit status 2, never a traceback."""
 
 from __future__ import annotations
 
-import argparse
-import importlib
-import sys
+import os
 
-from ..config.errors import RotbeamInputError
-from . import options
-from .progress import add_quiet_flag
+#: BLAS and OpenMP thread counts a command runs with unless its caller set them: the matrices
+#: are small (n <= 2 N), and a second thread only adds overhead (a sweep is 8.6x slower with
+#: OpenBLAS' default threads on a busy 2-core machine).  Set before numpy loads OpenBLAS.
+THREAD_VARIABLES = ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS",
+                    "VECLIB_MAXIMUM_THREADS", "NUMEXPR_NUM_THREADS")  # fmt: skip
+for _name in THREAD_VARIABLES:
+    os.environ.setdefault(_name, "1")
+
+import argparse  # noqa: E402
+import importlib  # noqa: E402
+import sys  # noqa: E402
+
+from ..config.errors import RotbeamInputError  # noqa: E402
+from . import options  # noqa: E402
+from .progress import add_quiet_flag  # noqa: E402
 
 #: command -> module of rotbeam.cli that parses and runs it
 COMMANDS = {
     "simulate": "simulate",
+    "sweep": "sweep",
     "critical": "critical",
     "effects": "effects",
     "modes": "modes",

@@ -239,7 +239,9 @@ def harmonics_flag(text: str) -> list[dict[str, float]]:
     return out
 
 
-def add_scene_flags(p: argparse.ArgumentParser, drive_frequency: bool = True) -> None:
+def add_scene_flags(
+    p: argparse.ArgumentParser, drive_frequency: bool = True, auto_effects: bool = True
+) -> None:
     """--scene, every beam, drive and numerics field, --effects and --json.
 
     Parameters
@@ -247,16 +249,21 @@ def add_scene_flags(p: argparse.ArgumentParser, drive_frequency: bool = True) ->
     p : argparse.ArgumentParser
         The command's parser.
     drive_frequency : bool
-        Whether the command takes --fd (`rotbeam critical` does not: it finds f_d*).
+        Whether the command takes --fd and --move (`rotbeam critical` does not: it finds f_d*;
+        nor does `rotbeam sweep`: it runs a line of them).
+    auto_effects : bool
+        Whether --effects takes auto[:TOL] (an effect budget at one drive frequency).
     """
     p.add_argument("--scene", help="YAML scene file (sections beam, drive, effects, numerics)")
     for section in ("beam", "drive", "numerics"):
         add_section(p, section, skip=() if drive_frequency or section != "drive" else ("f_d",))
     add_drive_flags(p, move=drive_frequency)
+    auto = (
+        "; or auto[:TOL]: those whose share of RMS is >= TOL (default 0.001), from "
+        "`rotbeam effects`" + ("" if drive_frequency else " at the linear estimate of f_d*")
+    )
     p.add_argument("--effects", help="comma list of effects switched on, e.g. centrifugal,euler"
-                   "; or auto[:TOL]: those whose share of RMS is >= TOL (default 0.001), from "
-                   "`rotbeam effects`" + ("" if drive_frequency else
-                   " at the linear estimate of f_d*"))  # fmt: skip
+                   + (auto if auto_effects else ""))  # fmt: skip
     p.add_argument("--json", action="store_true", help="print one JSON object")
 
 

@@ -129,7 +129,8 @@ SECTIONS: dict[str, dict[str, Param]] = {
 
 
 #: What a command asks beside its scene: the verdict's threshold, the f_d* search's tolerance,
-#: the classification run without a stable periodic state, the modes.  Not scene-file sections.
+#: the classification run without a stable periodic state, the modes, a sweep's line.  Not
+#: scene-file sections.
 OPTIONS: dict[str, dict[str, Param]] = {
     "verdict": {
         "threshold": _real(
@@ -163,6 +164,27 @@ OPTIONS: dict[str, dict[str, Param]] = {
     "modes": {
         "omega": _real(0.0, "steady angular velocity", "rad/s"),
         "count": _int(3, "number of modes", 1),
+    },
+    "sweep": {
+        "fd_min": Param(
+            "real",
+            None,
+            "first drive frequency of the line (required)",
+            "Hz",
+            0,
+            lo_open=True,
+            optional=True,
+        ),
+        "fd_max": Param(
+            "real",
+            None,
+            "last drive frequency of the line (required)",
+            "Hz",
+            0,
+            lo_open=True,
+            optional=True,
+        ),
+        "points": _int(40, "drive frequencies, equally spaced from --fd-min to --fd-max", 2),
     },
 }
 
@@ -336,7 +358,7 @@ def help_text(section: str, name: str) -> str:
     """
     p = param(section, name)
     unit = f" [{p.unit}]" if p.unit else ""
-    shown = (
-        f"{p.default:g}" if p.kind in ("real", "int") and p.default is not None else str(p.default)
-    )
+    if p.default is None:  # no default to show: the help says what happens without a value
+        return f"{p.help}{unit} ({allowed(p)})"
+    shown = f"{p.default:g}" if p.kind in ("real", "int") else str(p.default)
     return f"{p.help}{unit} (default {shown}; {allowed(p)})"

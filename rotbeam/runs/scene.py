@@ -35,6 +35,7 @@ from ..model.params import (
 )
 from ..solve.extrapolation import richardson
 from ..solve.numerics import Numerics
+from ..solve.periodic import Neighbour
 from ..solve.quasistatic import quasistatic_series
 from ..solve.steady import SteadyState, steady_state
 from ..solve.timebudget import TimeBudget
@@ -386,7 +387,7 @@ EXTRAPOLATION_MAX_CHANGE = 0.1
 def simulate(
     scene: Scene,
     progress: Callable[[int, float], None] | None = None,
-    guess: np.ndarray | None = None,
+    guess: np.ndarray | Neighbour | None = None,
     time_budget: TimeBudget | None = None,
 ) -> SceneResult:
     """Dynamic steady state and quasi-static response sampled at the same instants.
@@ -404,9 +405,11 @@ def simulate(
         Beam, a periodic drive, effects, numerics.
     progress : callable or None
         Called as progress(period, transient bound) by the time stepping on grid N.
-    guess : numpy.ndarray or None
-        Seeds the periodic collocation (the previous point's orbit along a sweep): angles
-        [rad] at M equispaced instants of a period on grid N, shape (M, n).
+    guess : numpy.ndarray, Neighbour or None
+        Seeds the periodic collocation: an orbit on grid N (angles [rad] at M equispaced
+        instants of a period, shape (M, n)), or the previous point's along a sweep
+        (`rotbeam.solve.periodic.Neighbour`, whose state also starts time stepping where no
+        orbit continues it).
     time_budget : TimeBudget or None
         The wall-time budget of the whole call, shared with a caller's other phases; None:
         numerics.max_seconds from the call.
@@ -436,7 +439,9 @@ def simulate(
     if not fine.converged:  # nothing to extrapolate: the coarse run would only cost time
         note = f"not extrapolated: no steady state at N = {num.N} (N = {Nc} not run)"
         return replace(fine, extrapolation={"N_coarse": Nc, "extrapolated": False, "note": note})
-    coarse_guess = guess[:, 1::2] if guess is not None and num.N % 2 == 0 else None
+    coarse_guess = None
+    if guess is not None and num.N % 2 == 0:  # the coarse grid's nodes are every second one
+        coarse_guess = guess.coarse() if isinstance(guess, Neighbour) else guess[:, 1::2]
     coarse = _simulate_grid(
         Scene(scene.beam, scene.drive, scene.effects, replace(num, N=Nc, extrapolate=False)),
         None,
@@ -472,7 +477,7 @@ def simulate(
 def _simulate_grid(
     scene: Scene,
     progress: Callable[[int, float], None] | None,
-    guess: np.ndarray | None,
+    guess: np.ndarray | Neighbour | None,
     time_budget: TimeBudget,
 ) -> SceneResult:
     t0 = time.perf_counter()

@@ -5,9 +5,10 @@ exponential midpoint rule, second-order Magnus), with J the exact Jacobian on th
 trigonometric interpolant; its eigenvalues are the multipliers, and max |mu| < 1 means the orbit
 attracts.  The same pass propagates the interpolant's residual: the one-period defect behind the
 certificate of `rotbeam.solve.stability`.  A first try of FIRST_STEPS steps stands when a coarse
-product from the same exponentials agrees with it; otherwise 2 M steps are taken.  Definitions,
-derivation, step counts and checks: docs/stability.md, "How the multipliers are computed" and
-"The monodromy certificate".
+product from the same exponentials agrees with it; otherwise the step counts of STEP_LADDER are
+taken in turn, each checked against the one before, until one stands.  Definitions, derivation,
+step counts and checks: docs/stability.md, "How the multipliers are computed" and "The
+monodromy certificate".
 """
 
 from __future__ import annotations
@@ -30,7 +31,14 @@ STABLE_MARGIN = 1e-6
 #: over the period, the common case (docs/stability.md)
 FIRST_STEPS = 12
 
-#: the first try stands when its |mu|max and the coarse product's differ by at most this ...
+#: the step counts after a first try that does not stand: each is checked against the one before
+#: and kept when the two agree.  Consecutive counts are coprime (3 S + 1): the exponential
+#: midpoint rule's error peaks at step counts that alias a mode's frequency onto a low harmonic
+#: of the orbit, a count's aliases are those of its divisors too, and two coprime counts share
+#: none below their product (docs/stability.md, "How the multipliers are computed")
+STEP_LADDER = (FIRST_STEPS, 37, 112, 337, 1012)
+
+#: a product stands when its |mu|max and the one it is checked against differ by at most this ...
 SPREAD_TOL = 1e-5
 #: ... and their fixed-point offsets by this much of the offset or of the orbit's size
 OFFSET_RTOL = 1e-2
@@ -53,8 +61,9 @@ class FloquetResult:
     seconds: float  #: time the computation took [s] (time.perf_counter)
     method: str = "exponential midpoint (Magnus-2) product of matrix exponentials"
     defect: np.ndarray | None = None  #: one-period map minus identity at the orbit's start
-    #: the same rule on a third of the steps (every third step's exponential cubed), whose
-    #: distance from this one estimates its error; None when the steps were fixed or full
+    #: the product this one was checked against: the same rule on a third of the steps (every
+    #: third step's exponential cubed) for a first try, the count of STEP_LADDER before it
+    #: after that; their distance estimates the error.  None when the steps were fixed
     coarse: FloquetResult | None = None
     #: (w,) once `fixed_point_offset` has solved for it: the acceptance of a first try and the
     #: certificate both ask
@@ -152,20 +161,29 @@ def _step_exponentials(steps_data, h: float) -> np.ndarray:
     return np.array(out)
 
 
-def _product(E: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """(Phi, e(P)) from the steps' augmented exponentials, the first step first."""
+def _product(
+    E: np.ndarray, start: tuple[np.ndarray, np.ndarray] | None = None
+) -> tuple[np.ndarray, np.ndarray]:
+    """(Phi, e(P)) from the steps' augmented exponentials, the first step first, continuing
+    the product `start` of the steps before them (None: the first steps)."""
     dim = E.shape[1] - 1
-    Phi, e = E[0, :dim, :dim], E[0, :dim, dim].copy()
-    for Ek in E[1:]:
+    if start is None:
+        Phi, e = E[0, :dim, :dim], E[0, :dim, dim].copy()
+        E = E[1:]
+    else:
+        Phi, e = start
+    for Ek in E:
         Phi, e = Ek[:dim, :dim] @ Phi, Ek[:dim, :dim] @ e + Ek[:dim, dim]
     return Phi, e
 
 
-def _coarse_product(E: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def _coarse_product(
+    E: np.ndarray, start: tuple[np.ndarray, np.ndarray] | None = None
+) -> tuple[np.ndarray, np.ndarray]:
     """(Phi, e(P)) of the rule on a third of the steps: step k of 3h has its midpoint at the
     midpoint of fine step 3k + 1, so its exponential is that step's cubed (two products, no
-    new exponential)."""
-    return _product(np.array([Ek @ Ek @ Ek for Ek in E[1::3]]))
+    new exponential).  E starts at a step whose index is a multiple of 3."""
+    return _product(np.array([Ek @ Ek @ Ek for Ek in E[1::3]]), start)
 
 
 def multipliers_of(
@@ -226,47 +244,57 @@ def trig_eval(X: np.ndarray, period: float, t: np.ndarray, derivative: int = 0) 
     return np.real(np.tensordot(E, C, axes=(1, 0)))
 
 
-def first_try_stands(first: FloquetResult, size: float) -> bool:
-    """Whether the first try's |mu|max and fixed-point offset are as good as the full step
-    count's, judged by their distance from the coarse product of the same exponentials.
+def first_try_stands(
+    first: FloquetResult,
+    size: float,
+    offset_atol: float | None = None,
+    mu_tol: float = SPREAD_TOL,
+) -> bool:
+    """Whether a product's |mu|max and fixed-point offset are as good as a finer step count's,
+    judged by their distance from the product it was checked against (`coarse`).
 
-    |mu|max must lie within SPREAD_TOL of the coarse product's and within a tenth of its
-    distance from 1 (the spread cannot move the stability verdict), and the offset
-    (I - Phi)^-1 defect within OFFSET_RTOL of the coarse one's or OFFSET_ATOL of the orbit's
-    size (the certificate compares it with 1e-4 of the response).  The entries of Phi may still
+    |mu|max must lie within `mu_tol` (SPREAD_TOL, what a reported |mu|max carries) of the
+    coarse product's and within a tenth of its distance from 1 (the spread cannot move the
+    stability verdict), and the offset
+    (I - Phi)^-1 defect within OFFSET_RTOL of the coarse one's or `offset_atol` (OFFSET_ATOL of
+    the orbit's size unless given; infinite where the certificate weighs the offsets' gap
+    itself).  The entries of Phi may still
     be off by more: a stiff mode's phase over the period moves them and not |mu|
     (tests/test_floquet.py; docs/stability.md, "How the multipliers are computed").
 
     Parameters
     ----------
     first : FloquetResult
-        The first try, with its `coarse` product set.
+        The product, with its `coarse` product set.
     size : float
         The orbit's size, max |z| over its samples (in the units of the state).
+    offset_atol : float or None
+        The absolute tolerance of the offsets' gap (max-norm, units of the state); None:
+        OFFSET_ATOL * size; inf: the offsets are not compared.
+    mu_tol : float
+        The tolerance of |mu|max's spread; inf: only the verdict's (a tenth of the distance
+        from 1).
 
     Returns
     -------
     bool
-        True when the first try stands; False when the full step count is needed.
+        True when the product stands; False when a finer step count is needed.
     """
-    if first.spread > min(SPREAD_TOL, 0.1 * abs(1.0 - first.max_abs)):
+    if first.spread > min(mu_tol, 0.1 * abs(1.0 - first.max_abs)):
         return False
+    if offset_atol == math.inf:
+        return True
     w, w_coarse = first.fixed_point_offset(), first.coarse.fixed_point_offset()
     if w is None or w_coarse is None:
         return first.defect is None
     gap = float(np.max(np.abs(w - w_coarse)))
-    return gap <= OFFSET_RTOL * float(np.max(np.abs(w))) + OFFSET_ATOL * size
+    atol = OFFSET_ATOL * size if offset_atol is None else offset_atol
+    return gap <= OFFSET_RTOL * float(np.max(np.abs(w))) + atol
 
 
-def default_steps(M: int) -> int:
-    """The full step count: 2 M (at least 32), M the orbit's collocation instants."""
-    return max(2 * M, 32)
-
-
-def _steps_data(jac, Z, period, steps, rhs, rows) -> tuple[np.ndarray, np.ndarray, bool]:
-    """(J (S, dim, dim), r (S, dim), has_defect) at the midpoints of `steps` equal steps: the
-    Jacobian and the interpolant's residual (zero without a right-hand side)."""
-    t = (np.arange(steps) + 0.5) * (period / steps)
+def _steps_data(jac, Z, period, t, rhs, rows) -> tuple[np.ndarray, np.ndarray, bool]:
+    """(J (S, dim, dim), r (S, dim), has_defect) at the steps' midpoints t (S,): the Jacobian
+    and the interpolant's residual (zero without a right-hand side)."""
     Zs = trig_eval(Z, period, t)
     if rows is not None:
         F, Js = rows(t, Zs)
@@ -278,12 +306,22 @@ def _steps_data(jac, Z, period, steps, rhs, rows) -> tuple[np.ndarray, np.ndarra
     return Js, trig_eval(Z, period, t, derivative=1) - F, True
 
 
+#: steps whose Jacobians and exponentials are made at once (a multiple of 3, for the coarse
+#: product): the product goes on block by block, so a long pass keeps its arrays in cache
+#: (1.4x faster at 1012 steps than all at once)
+BLOCK = 63
+
+
 def _monodromy(jac, Z, period, steps, rhs, rows, coarse: bool):
     """(Phi, defect, coarse (Phi, defect) or None) over `steps` steps."""
-    Js, r, has_defect = _steps_data(jac, Z, period, steps, rhs, rows)
-    E = _step_exponentials(zip(Js, r, strict=True), period / steps)
-    Phi, defect = _product(E)
-    low = _coarse_product(E) if coarse else None
+    t = (np.arange(steps) + 0.5) * (period / steps)
+    fine = low = None
+    for first in range(0, steps, BLOCK):
+        Js, r, has_defect = _steps_data(jac, Z, period, t[first : first + BLOCK], rhs, rows)
+        E = _step_exponentials(zip(Js, r, strict=True), period / steps)
+        fine = _product(E, fine)
+        low = _coarse_product(E, low) if coarse else None
+    Phi, defect = fine
     if not has_defect:  # the residual column was zero: no defect to report
         defect = None
         low = (low[0], None) if low is not None else None
@@ -297,6 +335,9 @@ def orbit_floquet(
     steps: int | None = None,
     rhs: Callable[[float, np.ndarray], np.ndarray] | None = None,
     rows: Callable[[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray]] | None = None,
+    after: FloquetResult | None = None,
+    offset_atol: float | None = None,
+    mu_tol: float = SPREAD_TOL,
 ) -> FloquetResult:
     """Floquet multipliers of a periodic orbit of a first-order system z' = f(t, z), given by
     its states at M equispaced instants of the period.
@@ -304,7 +345,8 @@ def orbit_floquet(
     The orbit between the instants is Z's trigonometric interpolant (`trig_eval`).  Without
     `steps` the monodromy first tries FIRST_STEPS steps and keeps them when the coarse product
     (a third of the steps, from the same exponentials) agrees with it (`first_try_stands`);
-    otherwise it takes `default_steps(M)` (docs/stability.md, "How the multipliers are
+    otherwise it takes the counts of STEP_LADDER in turn, each checked against the one before,
+    until one stands or the ladder ends (docs/stability.md, "How the multipliers are
     computed").
 
     Parameters
@@ -316,33 +358,57 @@ def orbit_floquet(
     period : float
         The period P, in the system's time unit.
     steps : int or None
-        A fixed number of Magnus steps; None: the first try, else the full count.
+        A fixed number of Magnus steps; None: the first try, then the ladder.
     rhs : callable or None
         rhs(t, z) -> f, shape (dim,).  With it the result also carries the interpolant's
         one-period `defect` (docs/stability.md, "The monodromy certificate").
     rows : callable or None
         rows(t, Z) -> (f (S, dim), J (S, dim, dim)) at S instants at once, in place of jac and
         rhs (the beam's batched `first_order_rows`).
+    after : FloquetResult or None
+        A pass of the same orbit already made: the ladder goes on from the first count above
+        its steps, checked against it (what an ambiguous certificate asks for).
+    offset_atol : float or None
+        How far the fixed-point offsets of two counts may differ for the finer to stand
+        (`first_try_stands`).
+    mu_tol : float
+        How far their |mu|max may differ (`first_try_stands`).
 
     Returns
     -------
     FloquetResult
-        The multipliers, the monodromy, the steps taken and, with rhs or rows, the defect; a
-        kept first try also carries its coarse product (`coarse`).
+        The multipliers, the monodromy, the steps taken and, with rhs or rows, the defect; the
+        product it was checked against is its `coarse` (None for a fixed count).
     """
     t0 = time.perf_counter()
     if steps is not None:
         Phi, defect, _ = _monodromy(jac, Z, period, steps, rhs, rows, coarse=False)
         return multipliers_of(Phi, steps, time.perf_counter() - t0, defect)
-    Phi, defect, low = _monodromy(jac, Z, period, FIRST_STEPS, rhs, rows, coarse=True)
-    first = multipliers_of(Phi, FIRST_STEPS, 0.0, defect)
-    first.coarse = multipliers_of(low[0], FIRST_STEPS // 3, 0.0, low[1])
-    if first_try_stands(first, float(np.max(np.abs(Z)))):
-        first.seconds = time.perf_counter() - t0
-        return first
-    full = default_steps(Z.shape[0])
-    Phi, defect, _ = _monodromy(jac, Z, period, full, rhs, rows, coarse=False)
-    return multipliers_of(Phi, full, time.perf_counter() - t0, defect)
+    size = float(np.max(np.abs(Z)))
+    previous = after
+    if previous is None:
+        Phi, defect, low = _monodromy(jac, Z, period, FIRST_STEPS, rhs, rows, coarse=True)
+        previous = multipliers_of(Phi, FIRST_STEPS, 0.0, defect)
+        previous.coarse = multipliers_of(low[0], FIRST_STEPS // 3, 0.0, low[1])
+        if first_try_stands(previous, size, offset_atol, mu_tol):
+            previous.seconds = time.perf_counter() - t0
+            return previous
+    for count in (S for S in STEP_LADDER if S > previous.steps):
+        Phi, defect, _ = _monodromy(jac, Z, period, count, rhs, rows, coarse=False)
+        current = multipliers_of(Phi, count, 0.0, defect)
+        current.coarse = _alone(previous)
+        previous = current
+        if first_try_stands(current, size, offset_atol, mu_tol):
+            break
+    previous.seconds = time.perf_counter() - t0
+    return previous
+
+
+def _alone(fl: FloquetResult) -> FloquetResult:
+    """`fl` without the product it was checked against (a ladder keeps one comparison)."""
+    out = FloquetResult(fl.multipliers, fl.monodromy, fl.steps, fl.seconds, fl.method, fl.defect)
+    out._offset = fl._offset
+    return out
 
 
 def beam_floquet(
@@ -350,6 +416,9 @@ def beam_floquet(
     theta: np.ndarray,
     theta_t: np.ndarray,
     steps: int | None = None,
+    after: FloquetResult | None = None,
+    offset_atol: float | None = None,
+    mu_tol: float = SPREAD_TOL,
 ) -> FloquetResult:
     """Floquet multipliers and one-period defect of a collocated orbit of the beam.
 
@@ -366,8 +435,14 @@ def beam_floquet(
     theta_t : numpy.ndarray
         Their rates d theta / d tau at the same instants, shape (n, M).
     steps : int or None
-        A fixed number of Magnus steps; None: the first try, else the full count
+        A fixed number of Magnus steps; None: the first try, then the ladder
         (`orbit_floquet`).
+    after : FloquetResult or None
+        A pass of the same orbit already made, for the ladder to go on from.
+    offset_atol : float or None
+        How far two counts' fixed-point offsets may differ (`first_try_stands`).
+    mu_tol : float
+        How far their |mu|max may differ (`first_try_stands`).
 
     Returns
     -------
@@ -381,7 +456,7 @@ def beam_floquet(
         return model.first_order_rows(Z[:, :n], Z[:, n:], lam, lam_dot)
 
     Z = np.concatenate([theta, theta_t], axis=0).T
-    return orbit_floquet(None, Z, dl.period, steps, rows=rows)
+    return orbit_floquet(None, Z, dl.period, steps, None, rows, after, offset_atol, mu_tol)
 
 
 def sampled_beam_floquet(
@@ -400,7 +475,7 @@ def sampled_beam_floquet(
         Angles [rad] at m equispaced instants of one drive period, the first at a whole number
         of periods, shape (n, m).
     steps : int or None
-        A fixed number of Magnus steps; None: the first try, else the full count.
+        A fixed number of Magnus steps; None: the first try, then the ladder.
 
     Returns
     -------

@@ -11,7 +11,7 @@ the solver: docs/numerics.md, "Trigonometric collocation".
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 import scipy.linalg as sla
@@ -212,6 +212,77 @@ class Collocation:
         return solve
 
 
+@dataclass(frozen=True)
+class Neighbour:
+    """The converged orbit of a nearby scene, where continuation starts (a sweep's previous
+    point): the same model at another drive frequency.
+
+    The angles are kept at equispaced phases of the drive period, so the orbit serves as a
+    start at any frequency as it is.
+    """
+
+    theta: np.ndarray  #: (M, n) angles [rad] at the phases j / M of the drive period
+    omega: float  #: its drive frequency 2 pi f_d T (dimensionless)
+    #: (Theta, Theta_t) at the start of its period, shape (2 n,): where time stepping starts
+    #: when no orbit continues it
+    state: np.ndarray | None = None
+
+    @property
+    def M(self) -> int:
+        """Its collocation instants."""
+        return self.theta.shape[0]
+
+    def at(self, M: int) -> np.ndarray:
+        """The orbit at M instants (its trigonometric interpolant resampled).
+
+        Parameters
+        ----------
+        M : int
+            Instants (odd).
+
+        Returns
+        -------
+        numpy.ndarray
+            Theta [rad] at the phases j / M, shape (M, n).
+        """
+        return self.theta if self.M == M else trig_interpolate(self.theta, M)
+
+    def coarse(self) -> Neighbour:
+        """The same orbit on the grid of N // 2 intervals (every second node; N even).
+
+        Returns
+        -------
+        Neighbour
+            Angles and state at the coarse grid's nodes.
+        """
+        n = self.theta.shape[1]
+        state = None
+        if self.state is not None:
+            state = np.concatenate([self.state[:n][1::2], self.state[n:][1::2]])
+        return Neighbour(self.theta[:, 1::2], self.omega, state)
+
+
+def as_neighbour(guess: np.ndarray | Neighbour | None, omega: float) -> Neighbour | None:
+    """A guess as a `Neighbour`: an array of angles (M, n) is one at the drive frequency
+    `omega` (no slope, no state).
+
+    Parameters
+    ----------
+    guess : numpy.ndarray, Neighbour or None
+        The guess.
+    omega : float
+        The frequency a bare array is taken to be at (the scene's own).
+
+    Returns
+    -------
+    Neighbour or None
+        The guess as a Neighbour (without a state for an array).
+    """
+    if guess is None or isinstance(guess, Neighbour):
+        return guess
+    return Neighbour(np.asarray(guess, dtype=float), omega)
+
+
 LINEAR_SOLVERS = ("auto", "dense", "krylov")
 DENSE_MAX = 200  #: "auto": dense LU up to this many unknowns (GMRES 2.5x faster at 663, 6x at 2535)
 
@@ -387,15 +458,88 @@ def _amplitude_continuation(model: DiscreteModel, M: int, rtol: float, steps: in
     return res
 
 
+#: the frequency substeps of `continued`: the step from the neighbour is halved, at most this
+#: many times (down to 1/16 of it), while Newton fails
+SUBSTEP_HALVINGS = 4
+#: Newton steps a substep, or the start from the neighbour on its own number of instants, may
+#: take before it counts as failed (from a near orbit Newton meets its tolerance in 3-6)
+SUBSTEP_MAXITER = 12
+
+
+def continued(model: DiscreteModel, seed: Neighbour, M0: int, rtol: float) -> PeriodicResult | None:
+    """The orbit of `model` continued from a neighbouring scene's, at M0 instants where it is
+    found there.
+
+    Newton starts from the neighbour's orbit at M0 instants, then at the neighbour's own
+    number when that is larger; where neither converges, the frequency is approached from the
+    neighbour's in substeps, halved while Newton fails (`SUBSTEP_HALVINGS`).  A fold of the
+    branch between the two frequencies stops all of them: the orbit followed does not reach
+    this frequency.  An orbit found on more instants than M0 is solved again on M0 from its own
+    interpolant (`_on`), so that the sizes taken from there are those a scene solved alone
+    takes.
+
+    Parameters
+    ----------
+    model : DiscreteModel
+        The model at the frequency wanted.
+    seed : Neighbour
+        The neighbour's orbit.
+    M0 : int
+        First number of instants (odd).
+    rtol : float
+        Newton's relative step tolerance.
+
+    Returns
+    -------
+    PeriodicResult or None
+        The orbit Newton converged to; None when it converged nowhere.
+    """
+    omega = model.dl.omega
+    res = solve_periodic(model, M0, guess=seed.at(M0), rtol=rtol)
+    if res.converged:
+        return res
+    M = max(M0, seed.M)
+    if M > M0:
+        res = solve_periodic(model, M, guess=seed.at(M), rtol=rtol, maxiter=SUBSTEP_MAXITER)
+        if res.converged:
+            return _on(model, res, M0, rtol)
+    X, w = seed.at(M), seed.omega
+    step = (omega - w) / 2.0
+    for _ in range(SUBSTEP_HALVINGS):
+        while abs(omega - w) > 1e-12 * abs(omega):
+            target = omega if abs(step) >= abs(omega - w) else w + step
+            at = model if target == omega else model.at(replace(model.dl, omega=target))
+            res = solve_periodic(at, M, guess=X, rtol=rtol, maxiter=SUBSTEP_MAXITER)
+            if not res.converged:
+                break
+            X, w = res.theta.T, target
+            if target == omega:
+                return _on(model, res, M0, rtol)
+        step /= 2.0
+    return None
+
+
+def _on(model: DiscreteModel, res: PeriodicResult, M0: int, rtol: float) -> PeriodicResult:
+    """The orbit `res` solved again on M0 instants from its interpolant; `res` itself where
+    Newton does not converge there (M0 does not resolve it)."""
+    if res.M == M0:
+        return res
+    coarse = solve_periodic(model, M0, guess=trig_interpolate(res.theta.T, M0), rtol=rtol)
+    return coarse if coarse.converged else res
+
+
 def solve_periodic_adaptive(
     model: DiscreteModel,
     M0: int = 17,
     tail_tol: float = 1e-5,
     M_max: int = 129,
     rtol: float = 1e-10,
-    guess: np.ndarray | None = None,
+    guess: np.ndarray | Neighbour | None = None,
 ) -> PeriodicResult:
     """`solve_periodic` with M refined (2M - 1) until the harmonic tail is below `tail_tol`.
+
+    M starts at M0 whatever the guess: the sizes taken are those a solve without a guess takes,
+    so that a sweep's orbits are the scenes' own.
 
     Parameters
     ----------
@@ -409,9 +553,10 @@ def solve_periodic_adaptive(
         Finest M.
     rtol : float
         Newton's relative step tolerance.
-    guess : numpy.ndarray or None
-        An orbit (M', n) of a neighbouring scene (continuation), resampled to M instants; when
-        Newton fails from it, from the linear guess, then by continuation in the amplitude.
+    guess : numpy.ndarray, Neighbour or None
+        An orbit (M', n) of a neighbouring scene, or a `Neighbour`: continuation
+        (`continued`); when Newton fails from it, from the linear guess, then by continuation
+        in the amplitude.
 
     Returns
     -------
@@ -419,13 +564,9 @@ def solve_periodic_adaptive(
         The last orbit; its message says when the tail stayed above `tail_tol` at M_max.
     """
     M = M0 if M0 % 2 else M0 + 1
-    if guess is not None:
-        guess = np.asarray(guess, dtype=float)
-        M = max(M, guess.shape[0] if guess.shape[0] % 2 else guess.shape[0] + 1)
-        if guess.shape[0] != M:
-            guess = trig_interpolate(guess, M)
-    res = solve_periodic(model, M, guess=guess, rtol=rtol)
-    if not res.converged and guess is not None:
+    seed = as_neighbour(guess, model.dl.omega)
+    res = continued(model, seed, M, rtol) if seed is not None else None
+    if res is None:
         res = solve_periodic(model, M, rtol=rtol)
     if not res.converged:
         res = _amplitude_continuation(model, M, rtol) or res

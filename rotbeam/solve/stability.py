@@ -14,17 +14,25 @@
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
 
 from ..model.base import DiscreteModel
-from .floquet import FloquetResult, beam_floquet, sampled_beam_floquet
+from .floquet import (
+    SPREAD_TOL,
+    STEP_LADDER,
+    FloquetResult,
+    beam_floquet,
+    sampled_beam_floquet,
+)
 from .periodic import PeriodicResult
 
 #: the monodromy certificate asks the estimated offset to be this many times below ss_tol: the
-#: estimate is first order in the defect and its quadrature (2 M midpoints) is within a factor 2
-#: of the defect measured by tight time stepping at the benchmark scenes (tests/test_floquet.py)
+#: estimate is first order in the defect and its quadrature (the monodromy's midpoints) is within
+#: a factor 2 of the defect measured by tight time stepping at the benchmark scenes
+#: (tests/test_floquet.py)
 CERTIFICATE_SAFETY = 10.0
 
 #: size of the push off an unstable orbit, relative to the response (max |Theta|)
@@ -39,6 +47,8 @@ def orbit_stability(
     model: DiscreteModel,
     periodic: PeriodicResult | None,
     steps: int | None = None,
+    after: FloquetResult | None = None,
+    candidate: bool = False,
 ) -> FloquetResult | None:
     """Floquet multipliers and defect of a collocated orbit, before any time stepping.
 
@@ -49,8 +59,16 @@ def orbit_stability(
     periodic : PeriodicResult or None
         The collocated orbit (`rotbeam.solve.periodic`).
     steps : int or None
-        A fixed number of Magnus steps; None: the first try, else the full count
+        A fixed number of Magnus steps; None: the first try, then the ladder
         (`rotbeam.solve.floquet.orbit_floquet`).
+    after : FloquetResult or None
+        A pass of the same orbit already made, for the ladder to go on from.
+    candidate : bool
+        Whether the orbit is only a candidate yet: the step count then answers for the
+        stability verdict alone (|mu|max to a tenth of its distance from 1), and the
+        fixed-point offset is left to `monodromy_certificate`, which weighs it with its
+        spread between two counts and asks for more where that is ambiguous.  An orbit that
+        is reported gets |mu|max to SPREAD_TOL (`reported_multipliers`).
 
     Returns
     -------
@@ -59,7 +77,37 @@ def orbit_stability(
     """
     if periodic is None or not periodic.converged:
         return None
-    return beam_floquet(model, periodic.theta, periodic.theta_t, steps)
+    loose = math.inf if candidate else None
+    return beam_floquet(model, periodic.theta, periodic.theta_t, steps, after, loose,
+                        math.inf if candidate else SPREAD_TOL)  # fmt: skip
+
+
+def reported_multipliers(
+    model: DiscreteModel, periodic: PeriodicResult, fl: FloquetResult | None
+) -> FloquetResult | None:
+    """The multipliers of a collocated orbit that is reported: `fl` (a candidate's), with the
+    step ladder gone on until |mu|max stands to SPREAD_TOL.
+
+    Parameters
+    ----------
+    model : DiscreteModel
+        The model and its drive.
+    periodic : PeriodicResult
+        The orbit.
+    fl : FloquetResult or None
+        Its multipliers as the candidate check left them.
+
+    Returns
+    -------
+    FloquetResult or None
+        `fl` when its spread is already within SPREAD_TOL (or it has no comparison: a fixed
+        count), else the finer pass.
+    """
+    if fl is None or fl.coarse is None or fl.spread <= SPREAD_TOL:
+        return fl
+    if fl.steps >= STEP_LADDER[-1]:
+        return fl
+    return beam_floquet(model, periodic.theta, periodic.theta_t, after=fl, offset_atol=math.inf)
 
 
 def leave_orbit(z: np.ndarray, fl: FloquetResult, size: float) -> np.ndarray:

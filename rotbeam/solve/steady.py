@@ -25,9 +25,9 @@ from ..model.modes import (
     linear_forced_response,
 )
 from ..model.params import Dimensionless
-from .floquet import FloquetResult, default_steps
+from .floquet import STEP_LADDER, FloquetResult
 from .numerics import Numerics
-from .periodic import PeriodicResult, refined, solve_periodic_adaptive
+from .periodic import Neighbour, PeriodicResult, as_neighbour, refined, solve_periodic_adaptive
 from .quasistatic import quasistatic_series
 from .spectral import trig_interpolate
 from .stability import (
@@ -36,6 +36,7 @@ from .stability import (
     leave_orbit,
     monodromy_certificate,
     orbit_stability,
+    reported_multipliers,
     stability_note,
     window_stability,
 )
@@ -97,7 +98,7 @@ def initial_state(
     model: DiscreteModel,
     start: str,
     tail_tol: float = 1e-3,
-    guess: np.ndarray | None = None,
+    guess: np.ndarray | Neighbour | None = None,
 ) -> tuple[np.ndarray, PeriodicResult | None]:
     """The state time stepping starts from at tau = 0.
 
@@ -106,13 +107,15 @@ def initial_state(
     model : DiscreteModel
         The model and its drive.
     start : str
-        "periodic" (the collocated orbit; the quasi-static state when collocation fails),
-        "linear" (the linearised forced response), "quasistatic" (the static equilibrium and its
-        rate, by central differences) or "rest" (the straight beam at rest).
+        "periodic" (the collocated orbit; when collocation fails, the neighbour's state if the
+        guess carries one, else the quasi-static state), "linear" (the linearised forced
+        response), "quasistatic" (the static equilibrium and its rate, by central differences)
+        or "rest" (the straight beam at rest).
     tail_tol : float
         Harmonic tail the collocated orbit must reach (`solve_periodic_adaptive`).
-    guess : numpy.ndarray or None
-        An orbit (M, n) that seeds the collocation.
+    guess : numpy.ndarray, Neighbour or None
+        An orbit (M, n) that seeds the collocation, or a neighbouring scene's
+        (`rotbeam.solve.periodic.Neighbour`).
 
     Returns
     -------
@@ -125,9 +128,12 @@ def initial_state(
     if start == "rest":
         return np.zeros(2 * n), None
     if start == "periodic":
-        res = solve_periodic_adaptive(model, tail_tol=tail_tol, guess=guess)
+        seed = as_neighbour(guess, dl.omega)
+        res = solve_periodic_adaptive(model, tail_tol=tail_tol, guess=seed)
         if res.converged:
             return np.concatenate([res.theta[:, 0], res.theta_t[:, 0]]), res
+        if seed is not None and seed.state is not None:  # where the neighbour's beam is
+            return np.array(seed.state, dtype=float), None
         start = "quasistatic"  # fall back to a physical state; the time stepping still decides
     if start == "linear":
         theta, rate = np.zeros(n), np.zeros(n)  # Theta and Theta_t at tau = 0
@@ -142,7 +148,7 @@ def initial_state(
 def starting_state(
     model: DiscreteModel,
     num: Numerics,
-    guess: np.ndarray | None,
+    guess: np.ndarray | Neighbour | None,
     state0: np.ndarray | None,
 ) -> tuple[np.ndarray, PeriodicResult | None]:
     """The state time stepping starts from: `state0` when given, else `initial_state`.
@@ -153,8 +159,8 @@ def starting_state(
         The model and its drive.
     num : Numerics
         start and tail_tol.
-    guess : numpy.ndarray or None
-        An orbit (M, n) that seeds the collocation.
+    guess : numpy.ndarray, Neighbour or None
+        An orbit (M, n) that seeds the collocation, or a neighbouring scene's.
     state0 : numpy.ndarray or None
         (Theta, Theta_t) at tau = 0, shape (2 n,).
 
@@ -269,12 +275,13 @@ def _from_collocation(
     model: DiscreteModel, num: Numerics, res: PeriodicResult, t0: float
 ) -> SteadyState:
     """SteadyState straight from the collocation (no time stepping): `integrate=False`."""
-    fl = orbit_stability(model, res)
+    fl = orbit_stability(model, res, candidate=True)
     ok = res.converged and res.harmonic_tail <= num.tail_tol and model.eta > 0.0
     msg = f"collocation M={res.M}: {res.message}, harmonic tail {res.harmonic_tail:.2g}"
     cert = _certificate(fl, res, num, model.dl)
     if cert is not None:
         msg += f"; {cert.describe()}"
+    fl = reported_multipliers(model, res, fl)
     msg += stability_note(fl)
     unstable = ok and fl is not None and fl.unstable
     if unstable:
@@ -304,8 +311,8 @@ def accept_certified(
 ) -> tuple[SteadyState | None, str, Certificate | None]:
     """The collocated orbit as the steady state when its monodromy certificate holds.
 
-    An ambiguous certificate (the first try's Floquet steps cannot tell) is decided again with
-    the full step count.
+    An ambiguous certificate (the Floquet steps taken cannot tell) is decided again with the
+    next step counts of the ladder (`rotbeam.solve.floquet.STEP_LADDER`).
 
     Parameters
     ----------
@@ -332,13 +339,14 @@ def accept_certified(
     if num.certify != "monodromy" or periodic.harmonic_tail > num.tail_tol:
         return None, "", None
     cert = _certificate(fl, periodic, num, model.dl)
-    if cert is not None and cert.ambiguous:  # the first try's steps cannot tell: all of them
-        fl = orbit_stability(model, periodic, steps=default_steps(periodic.M))
+    while cert is not None and cert.ambiguous and fl.steps < STEP_LADDER[-1]:
+        fl = orbit_stability(model, periodic, after=fl, candidate=True)  # more steps decide
         cert = _certificate(fl, periodic, num, model.dl)
     if cert is None:
         return None, "", None
     if not cert.certified:
         return None, f"not certified by the monodromy ({cert.describe()}); ", cert
+    fl = reported_multipliers(model, periodic, fl)
     message = (
         f"collocation orbit (M={periodic.M}, harmonic tail {periodic.harmonic_tail:.2g}) "
         f"certified by the monodromy ({cert.describe()})" + stability_note(fl)
@@ -755,7 +763,7 @@ def certify_refining(
     state, why_not, cert = accept_certified(model, num, periodic, fl, t0)
     while state is None and why_not and 2 * periodic.M - 1 <= REFINE_M_MAX:
         finer = refined(model, periodic)
-        finer_fl = orbit_stability(model, finer)
+        finer_fl = orbit_stability(model, finer, candidate=True)
         if finer_fl is None or not finer_fl.stable:
             break
         previous = cert.offset
@@ -771,7 +779,7 @@ def steady_state(
     numerics: Numerics | None = None,
     progress: Callable[[int, float], None] | None = None,
     response_scale: float | None = None,
-    guess: np.ndarray | None = None,
+    guess: np.ndarray | Neighbour | None = None,
     state0: np.ndarray | None = None,
     time_budget: TimeBudget | None = None,
 ) -> SteadyState:
@@ -795,8 +803,10 @@ def steady_state(
         progress(period, transient bound) after every period of time stepping.
     response_scale : float or None
         Size of the response behind the absolute tolerance (the quasi-static max |Theta|).
-    guess : numpy.ndarray or None
-        An orbit (M, n) that seeds the collocation (continuation along a sweep).
+    guess : numpy.ndarray, Neighbour or None
+        An orbit (M, n) that seeds the collocation, or a neighbouring scene's
+        (`rotbeam.solve.periodic.Neighbour`: continuation along a sweep; where no orbit
+        continues it, time stepping starts from the neighbour's state).
     state0 : numpy.ndarray or None
         (Theta, Theta_t) at tau = 0 instead of `numerics.start`: time stepping from where the
         beam is (no collocation), e.g. the previous drive frequency's final `state` in a sweep
@@ -816,7 +826,7 @@ def steady_state(
     z, periodic = starting_state(model, num, guess, state0)
     if not num.integrate and periodic is not None:
         return _from_collocation(model, num, periodic, t0)
-    orbit_fl = orbit_stability(model, periodic)  # an unstable orbit is left, not verified
+    orbit_fl = orbit_stability(model, periodic, candidate=True)  # an unstable one is left
     unstable_orbit = orbit_fl is not None and orbit_fl.unstable
     from_orbit = periodic is not None and periodic.converged and not unstable_orbit
     why_not = ""
@@ -831,7 +841,7 @@ def steady_state(
     stepper = PeriodStepper(model, num, tol, time_budget or TimeBudget(num.max_seconds, t0))
     run = march(stepper, z, from_orbit, progress)
     win = rms_window(stepper, run, periodic, from_orbit)
-    status, message, fl = reported_stability(model, num, win, orbit_fl, from_orbit)
+    status, message, fl = reported_stability(model, num, win, orbit_fl, from_orbit, periodic)
     return SteadyState(
         tau=win.tau,
         theta=win.theta,
@@ -857,6 +867,7 @@ def reported_stability(
     win: Window,
     orbit_fl: FloquetResult | None,
     from_orbit: bool,
+    periodic: PeriodicResult | None = None,
 ) -> tuple[int, str, FloquetResult | None]:
     """Status, message and multipliers of the reported state: the collocated orbit's when it was
     verified in one period, else those of the orbit time stepping settled on (an unstable one is
@@ -874,6 +885,9 @@ def reported_stability(
         The collocated orbit's multipliers, if any.
     from_orbit : bool
         Whether the march started from the collocated orbit.
+    periodic : PeriodicResult or None
+        The collocated orbit: where its multipliers are the ones reported, their step count
+        goes on until |mu|max stands to SPREAD_TOL (`reported_multipliers`).
 
     Returns
     -------
@@ -893,5 +907,7 @@ def reported_stability(
             message += "; but the orbit reached is unstable (a slow transient, not a steady state)"
     if orbit_fl is not None and orbit_fl.unstable:
         message = f"collocated orbit unstable ({orbit_fl.crossing()}); {message}"
+    if (fl is None or fl is orbit_fl) and periodic is not None:
+        fl = reported_multipliers(model, periodic, orbit_fl)
     message += stability_note(fl if fl is not None else orbit_fl)
     return status, message, fl if fl is not None else orbit_fl
