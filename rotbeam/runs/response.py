@@ -23,16 +23,18 @@ import numpy as np
 from ..model.base import DiscreteModel
 from ..solve.lyapunov import largest_lyapunov
 from ..solve.steady import initial_state
+from ..solve.stepping import period_stepper
 from ..solve.system import FirstOrderSystem
 
 if TYPE_CHECKING:
     from .scene import SceneResult
 
 RESPONSES = ("periodic", "subharmonic", "quasiperiodic", "chaotic")
-#: stepper tolerance of the classification run.  At a = 3 rad/s, 7 Hz (N = 6, chaotic) the
-#: tangent's growth over two periods is the same to 4e-6 (relative) at rtol 1e-5 and 1e-7, for
-#: a third of the steps; the lightly damped top bending modes, rung by the large motion, set the
-#: step (docs/stability.md "The response at a = 3 rad/s, 7 Hz")
+#: stepper tolerance of the classification run (Radau's; DOP853 runs at
+#: `rotbeam.solve.stepping.EXPLICIT_TOL` times it).  At a = 3 rad/s, 7 Hz (N = 6, chaotic) the
+#: tangent's growth over two periods is the same to 4e-6 (relative) with Radau at rtol 1e-5 and
+#: 1e-7; the lightly damped top bending modes, rung by the large motion, set the step
+#: (docs/stability.md "The response at a = 3 rad/s, 7 Hz")
 RTOL = 1e-5
 MAX_SUBHARMONIC = 8  #: the largest q of a subharmonic (period q P) looked for
 CHAOS_MIN = 0.01  #: lambda P above which a clearly positive exponent counts as chaos
@@ -144,19 +146,16 @@ def section_distances(section: np.ndarray, max_q: int = MAX_SUBHARMONIC) -> list
     return out
 
 
-def _transient(rhs, jac, z, P, periods, rtol, atol, deadline, progress, total):
-    """Step `periods` periods from z, one solve a period so that the time budget (`deadline`,
-    time.perf_counter) and `progress` are seen between periods: (final state, periods done,
-    why it stopped early or '')."""
-    from scipy.integrate import solve_ivp  # here: only a time-stepped run needs it
-
+def _transient(stepper, z, P, periods, deadline, progress, total):
+    """Step `periods` periods from z, one call of `stepper` (`rotbeam.solve.stepping`) a period
+    so that the time budget (`deadline`, time.perf_counter) and `progress` are seen between
+    periods: (final state, periods done, why it stopped early or '')."""
     done = 0
     for k in range(periods):
-        sol = solve_ivp(rhs, (k * P, (k + 1) * P), z, method="Radau", rtol=rtol, atol=atol,
-                        jac=jac)  # fmt: skip
-        if sol.status < 0 or not np.all(np.isfinite(sol.y[:, -1])):
-            return z, done, f"transient failed in period {k + 1}: {sol.message}"
-        z, done = sol.y[:, -1], k + 1
+        y, why = stepper.state(k * P, (k + 1) * P, z)
+        if why or not np.all(np.isfinite(y)):
+            return z, done, f"transient failed in period {k + 1}: {why or 'not finite'}"
+        z, done = y, k + 1
         if progress is not None:
             progress(done, total)
         if time.perf_counter() > deadline:
@@ -184,13 +183,17 @@ def response_of(
     tol: float = 1e-3,
     start: str = "quasistatic",
     progress: Callable[[int, int], None] | None = None,
+    method: str = "auto",
 ) -> ResponseResult:
     """Time-step the scene past its transient and classify what it settles into.
 
-    Radau steps the transient one period a solve (so the budget and `progress` are seen between
+    The transient is stepped one period a call (so the budget and `progress` are seen between
     periods), then `rotbeam.solve.lyapunov.largest_lyapunov` integrates the section with one
     tangent vector; `classify` decides (docs/stability.md, "When there is no stable periodic
-    state").  The absolute tolerances scale with the quasi-static response, also from rest.
+    state").  The stepper is `rotbeam.solve.stepping.period_stepper`'s: DOP853 while the
+    steps are set by accuracy (compiled for the models its kernel covers), Radau while they
+    are set by stiffness.  The absolute tolerances scale with the quasi-static response, also
+    from rest.
 
     Parameters
     ----------
@@ -213,6 +216,8 @@ def response_of(
         The state at tau = 0: "quasistatic", "rest" or "linear" (`initial_state`).
     progress : callable or None
         progress(done, total) after every period.
+    method : str
+        "auto", "radau" or "dop853" (`rotbeam.solve.stepping.period_stepper`).
 
     Returns
     -------
@@ -223,7 +228,7 @@ def response_of(
     Raises
     ------
     ValueError
-        For another `start`.
+        For another `start` or `method`.
     """
     if start not in ("quasistatic", "rest", "linear"):
         raise ValueError(f"start must be quasistatic, rest or linear, got {start!r}")
@@ -236,10 +241,10 @@ def response_of(
     qs, _ = initial_state(model, "quasistatic")  # the tolerances' scale, also from rest
     z = qs if start == "quasistatic" else initial_state(model, start)[0]
     atol = _atol(qs[:n], rtol, dl.omega)
+    stepper = period_stepper(model, rtol, atol, method)
     total = transient_periods + section_periods
     share = t0 + max_seconds * transient_periods / total
-    z, done, note = _transient(rhs, jac, z, P, transient_periods, rtol, atol, share, progress,
-                               total)  # fmt: skip
+    z, done, note = _transient(stepper, z, P, transient_periods, share, progress, total)
 
     def per_interval(k: int) -> None:
         if progress is not None:
@@ -247,12 +252,13 @@ def response_of(
 
     ly = largest_lyapunov(rhs, jac, z, P, section_periods, t0=done * P, rtol=rtol, atol=atol,
                           samples_per_interval=SAMPLES, deadline=deadline,
-                          progress=per_interval)  # fmt: skip
+                          progress=per_interval, stepper=stepper.tangent)  # fmt: skip
     found = _classified(model, T, P, ly, tol)
     periods = done + ly.intervals
     q = found["period_multiple"]
     msg = (f"{found['response']}{f' (period {q} P)' if q > 1 else ''}: {periods} periods at "
-           f"N={N} ({done} transient, from {start}, rtol {rtol:g}), largest Lyapunov exponent "
+           f"N={N} ({done} transient, from {start}, rtol {rtol:g}, {stepper.name}), largest "
+           f"Lyapunov exponent "
            f"{found['lyapunov_max']:.3g} +- {found['lyapunov_spread']:.2g} 1/s (last half; "
            f"whole run {ly.exponent / T:.3g}), section distance d(1)={found['distances'][0]:.2g}"
            + (f"; {note}" if note else "")
