@@ -1,7 +1,8 @@
 """What a command or a workflow job loads: only what it uses.  `rotbeam simulate` without
---plot or --uncertainty loads neither matplotlib (0.35 s) nor scipy.stats (0.5 s), and a
-workflow script that draws nothing does not load matplotlib; each check runs in a fresh Python
-and has a positive control that loads the module, so that it can fail."""
+--plot or --uncertainty loads neither matplotlib (0.35 s) nor scipy.stats (0.5 s), numba (0.6 s,
+and its compiled kernels) loads only with a time-stepped classification, and a workflow script
+that draws nothing does not load matplotlib; each check runs in a fresh Python and has a
+positive control that loads the module, so that it can fail."""
 
 from __future__ import annotations
 
@@ -15,7 +16,7 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
-HEAVY = ("matplotlib", "scipy.stats")
+HEAVY = ("matplotlib", "scipy.stats", "numba")
 
 
 def loaded_after(code: str) -> list[str]:
@@ -40,6 +41,26 @@ def test_simulate_loads_neither_matplotlib_nor_scipy_stats(tmp_path):
     assert "matplotlib" in loaded_after(simulate("--plot", str(tmp_path / "a.png")))
     spread = ("--uncertainty", "gamma=0.039+-0.008", "--uq-method", "sobol", "--uq-samples", "2")
     assert "scipy.stats" in loaded_after(simulate(*spread))
+
+
+def test_numba_loads_with_a_classification_only(tmp_path):
+    """`rotbeam --help` and a scene with a stable periodic state do not load numba; a scene
+    without one, whose response is classified by the compiled stepper, does."""
+    assert "numba" not in loaded_after(cli_main(["--help"]))
+    assert "numba" not in loaded_after(simulate())
+    scene = tmp_path / "s.yaml"
+    scene.write_text(
+        "drive: {omega0: 5, f_d: 2}\n"
+        "numerics: {N: 4, start: rest, max_periods: 2, extrapolate: false}\n"
+    )
+    argv = ["simulate", "--scene", str(scene), "--json", "--response-N", "4",
+            "--response-periods", "2"]  # fmt: skip
+    assert "numba" in loaded_after(cli_main(argv))
+
+
+def cli_main(argv: list[str]) -> str:
+    """Code that runs `rotbeam argv` and goes on when it exits."""
+    return f"from rotbeam.cli import main\ntry:\n    main({argv!r})\nexcept SystemExit:\n    pass"
 
 
 def script_rules() -> dict[str, bool]:

@@ -212,8 +212,17 @@ class DiscreteModel(ABC):
         numpy.ndarray
             Theta_tt (units of 1/T^2), shape (n,).
         """
+        return self._accelerated(theta, theta_t, lam, lam_dot)[0]
+
+    def _accelerated(self, theta, theta_t, lam, lam_dot, jacobian=False):
+        """Theta_tt and what its tangent reuses: (Theta_tt, M, B, the LU of M, the damping
+        rows or None, dL/dTheta with `jacobian` or None)."""
         M, B = (a[0] for a in self.inertia_rows(theta[None]))
-        L = self.load_torque_rows(theta[None], [lam], [lam_dot])[0]
+        dL = None
+        if jacobian:
+            L, dL = (a[0] for a in self.load_torque_rows(theta[None], [lam], [lam_dot], True))
+        else:
+            L = self.load_torque_rows(theta[None], [lam], [lam_dot])[0]
         rhs = -self.stiffness @ theta - L - B @ (theta_t**2)
         if self.effects.coriolis:
             rhs -= 2.0 * lam * (B @ theta_t)
@@ -223,9 +232,62 @@ class DiscreteModel(ABC):
         damp = self.damping_rows(theta[None])
         lu = lu_factor(M, check_finite=False)
         if damp is None:
-            return lu_solve(lu, rhs, check_finite=False) - self.eta * theta_t
+            acc = lu_solve(lu, rhs, check_finite=False) - self.eta * theta_t
+            return acc, M, B, lu, None, dL
         rhs -= self.eta * (damp[0][0] @ theta_t)
-        return lu_solve(lu, rhs, check_finite=False)
+        acc = lu_solve(lu, rhs, check_finite=False)
+        return acc, M, B, lu, (damp[0][0], damp[1][0]), dL
+
+    def first_order_jvp(
+        self,
+        theta: np.ndarray,
+        theta_t: np.ndarray,
+        lam: float,
+        lam_dot: float,
+        p: np.ndarray,
+        q: np.ndarray,
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """The first-order right-hand side and its Jacobian times a vector, at one instant.
+
+        What a tangent (variational) equation needs at every stage of a time step: J (p, q)
+        without forming J, from the directional derivatives of the equations of motion
+        (docs/stability.md, "The tangent without the Jacobian"): one more solve with the
+        mass matrix instead of 2 n of them.  Equal to `first_order_jacobian` @ (p, q) to
+        round-off (exact for S = B, as that Jacobian).
+
+        Parameters
+        ----------
+        theta, theta_t : numpy.ndarray
+            Angles and rates, shape (n,).
+        lam, lam_dot : float
+            Rotation rate and its rate of change.
+        p, q : numpy.ndarray
+            The direction's angle and rate parts, shape (n,) each.
+
+        Returns
+        -------
+        F : numpy.ndarray
+            (Theta_t, Theta_tt), shape (2 n,).
+        Jv : numpy.ndarray
+            dF/d(Theta, Theta_t) applied to (p, q), shape (2 n,).
+        """
+        acc, M, B, lu, damp, dL = self._accelerated(theta, theta_t, lam, lam_dot, True)
+        a0 = acc + self.eta * theta_t if damp is None else acc
+        v = self.velocity_vector(theta_t, lam)
+        # dr p and dv q of `first_order_rows`, applied to p and q without forming them
+        drp = -(self.stiffness @ p) - dL @ p + M @ (v * p) - B @ (a0 * p)
+        drp += (B @ a0 - M @ v) * p
+        dvq = 2.0 * (B @ (theta_t * q))
+        if self.effects.coriolis:
+            dvq += 2.0 * lam * (B @ q)
+        if damp is not None:
+            Md, Bd = damp
+            drp -= self.eta * (Bd @ (theta_t * p) - (Bd @ theta_t) * p)
+            dvq += self.eta * (Md @ q)
+        dq = lu_solve(lu, drp - dvq, check_finite=False)
+        if damp is None:
+            dq -= self.eta * q
+        return np.concatenate([theta_t, acc]), np.concatenate([q, dq])
 
     def first_order_rows(
         self, theta: np.ndarray, theta_t: np.ndarray, lam: np.ndarray, lam_dot: np.ndarray

@@ -23,7 +23,8 @@ import numpy as np
 from ..model.base import DiscreteModel
 from ..solve.lyapunov import largest_lyapunov
 from ..solve.steady import initial_state
-from ..solve.system import FirstOrderSystem, OutOfTime
+from ..solve.stepping import period_stepper
+from ..solve.system import FirstOrderSystem
 from ..solve.timebudget import TimeBudget
 
 if TYPE_CHECKING:
@@ -34,10 +35,11 @@ RESPONSES = ("periodic", "subharmonic", "quasiperiodic", "chaotic")
 UNCLASSIFIED = "unclassified"
 #: section periods a class needs at least: the exponent's late rate and its spread take four
 MIN_SECTION_PERIODS = 4
-#: stepper tolerance of the classification run.  At a = 3 rad/s, 7 Hz (N = 6, chaotic) the
-#: tangent's growth over two periods is the same to 4e-6 (relative) at rtol 1e-5 and 1e-7, for
-#: a third of the steps; the lightly damped top bending modes, rung by the large motion, set the
-#: step (docs/stability.md "The response at a = 3 rad/s, 7 Hz")
+#: stepper tolerance of the classification run (Radau's; DOP853 runs at
+#: `rotbeam.solve.stepping.EXPLICIT_TOL` times it).  At a = 3 rad/s, 7 Hz (N = 6, chaotic) the
+#: tangent's growth over two periods is the same to 4e-6 (relative) with Radau at rtol 1e-5 and
+#: 1e-7; the lightly damped top bending modes, rung by the large motion, set the step
+#: (docs/stability.md "The response at a = 3 rad/s, 7 Hz")
 RTOL = 1e-5
 MAX_SUBHARMONIC = 8  #: the largest q of a subharmonic (period q P) looked for
 CHAOS_MIN = 0.01  #: lambda P above which a clearly positive exponent counts as chaos
@@ -149,22 +151,16 @@ def section_distances(section: np.ndarray, max_q: int = MAX_SUBHARMONIC) -> list
     return out
 
 
-def _transient(rhs, jac, z, P, periods, rtol, atol, deadline, progress, total):
-    """Step `periods` periods from z, one solve a period so that the time budget (`deadline`,
-    time.perf_counter) and `progress` are seen between periods: (final state, periods done,
-    why it stopped early or '')."""
-    from scipy.integrate import solve_ivp  # here: only a time-stepped run needs it
-
+def _transient(stepper, z, P, periods, deadline, progress, total):
+    """Step `periods` periods from z, one call of `stepper` (`rotbeam.solve.stepping`) a period
+    so that the time budget (`deadline`, time.perf_counter) and `progress` are seen between
+    periods: (final state, periods done, why it stopped early or '')."""
     done = 0
     for k in range(periods):
-        try:
-            sol = solve_ivp(rhs, (k * P, (k + 1) * P), z, method="Radau", rtol=rtol, atol=atol,
-                            jac=jac)  # fmt: skip
-        except OutOfTime:
-            return z, done, f"transient cut from {periods} periods by the time budget"
-        if sol.status < 0 or not np.all(np.isfinite(sol.y[:, -1])):
-            return z, done, f"transient failed in period {k + 1}: {sol.message}"
-        z, done = sol.y[:, -1], k + 1
+        y, why = stepper.state(k * P, (k + 1) * P, z)
+        if why or not np.all(np.isfinite(y)):
+            return z, done, f"transient failed in period {k + 1}: {why or 'not finite'}"
+        z, done = y, k + 1
         if progress is not None:
             progress(done, total)
         if time.perf_counter() > deadline:
@@ -193,13 +189,17 @@ def response_of(
     start: str = "quasistatic",
     progress: Callable[[int, int], None] | None = None,
     time_budget: TimeBudget | None = None,
+    method: str = "auto",
 ) -> ResponseResult:
     """Time-step the scene past its transient and classify what it settles into.
 
-    Radau steps the transient one period a solve (so the budget and `progress` are seen between
+    The transient is stepped one period a call (so the budget and `progress` are seen between
     periods), then `rotbeam.solve.lyapunov.largest_lyapunov` integrates the section with one
     tangent vector; `classify` decides (docs/stability.md, "When there is no stable periodic
-    state").  The absolute tolerances scale with the quasi-static response, also from rest.
+    state").  The stepper is `rotbeam.solve.stepping.period_stepper`'s: DOP853 while the
+    steps are set by accuracy (compiled for the models its kernel covers), Radau while they
+    are set by stiffness.  The absolute tolerances scale with the quasi-static response, also
+    from rest.
 
     Parameters
     ----------
@@ -226,6 +226,8 @@ def response_of(
         progress(done, total) after every period.
     time_budget : TimeBudget or None
         The wall-time budget shared with a command's other phases (replaces `max_seconds`).
+    method : str
+        "auto", "radau" or "dop853" (`rotbeam.solve.stepping.period_stepper`).
 
     Returns
     -------
@@ -236,7 +238,7 @@ def response_of(
     Raises
     ------
     ValueError
-        For another `start`.
+        For another `start` or `method`.
     """
     if start not in ("quasistatic", "rest", "linear"):
         raise ValueError(f"start must be quasistatic, rest or linear, got {start!r}")
@@ -244,15 +246,15 @@ def response_of(
     t0 = time.perf_counter()
     dl, N = model.dl, model.grid.N
     n, P, T = model.n, dl.period, time_scale
-    system = FirstOrderSystem(model, time_budget.deadline)  # OutOfTime inside a period
+    system = FirstOrderSystem(model)
     rhs, jac = system.rhs, system.jac
     qs, _ = initial_state(model, "quasistatic")  # the tolerances' scale, also from rest
     z = qs if start == "quasistatic" else initial_state(model, start)[0]
     atol = _atol(qs[:n], rtol, dl.omega)
+    stepper = period_stepper(model, rtol, atol, method)
     total = transient_periods + section_periods
     share = time_budget.part(transient_periods / total)
-    z, done, note = _transient(rhs, jac, z, P, transient_periods, rtol, atol, share.deadline,
-                               progress, total)  # fmt: skip
+    z, done, note = _transient(stepper, z, P, transient_periods, share.deadline, progress, total)
     if note.startswith("transient cut"):
         note = share.cut(f"the transient at {done} of {transient_periods} periods")
     asked = 0 if time_budget.spent() else section_periods  # no section period: no class
@@ -263,14 +265,15 @@ def response_of(
 
     ly = largest_lyapunov(rhs, jac, z, P, asked, t0=done * P, rtol=rtol, atol=atol,
                           samples_per_interval=SAMPLES, deadline=time_budget.deadline,
-                          progress=per_interval)  # fmt: skip
+                          progress=per_interval, stepper=stepper.tangent)  # fmt: skip
     periods = done + ly.intervals
     if ly.intervals < MIN_SECTION_PERIODS:
         return _unclassified(model, time_budget, ly, done, start, N, note, t0)
     found = _classified(model, T, P, ly, tol)
     q = found["period_multiple"]
     msg = (f"{found['response']}{f' (period {q} P)' if q > 1 else ''}: {periods} periods at "
-           f"N={N} ({done} transient, from {start}, rtol {rtol:g}), largest Lyapunov exponent "
+           f"N={N} ({done} transient, from {start}, rtol {rtol:g}, {stepper.name}), largest "
+           f"Lyapunov exponent "
            f"{found['lyapunov_max']:.3g} +- {found['lyapunov_spread']:.2g} 1/s (last half; "
            f"whole run {ly.exponent / T:.3g}), section distance d(1)={found['distances'][0]:.2g}"
            + (f"; {note}" if note else "")

@@ -16,8 +16,6 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .system import OutOfTime
-
 
 @dataclass
 class LyapunovResult:
@@ -38,6 +36,13 @@ class LyapunovResult:
     late_spread: float = math.inf  #: |third quarter's rate - fourth quarter's|
 
 
+#: one interval of a trajectory: (ta, tb, y at ta, t_eval or None) -> (y at tb, the first half
+#: of y, the state, at t_eval[:-1] as columns or None, '' or why the step failed)
+IntervalStep = Callable[
+    [float, float, np.ndarray, "np.ndarray | None"], "tuple[np.ndarray, np.ndarray | None, str]"
+]
+
+
 def largest_lyapunov(
     rhs: Callable[[float, np.ndarray], np.ndarray],
     jac: Callable[[float, np.ndarray], np.ndarray],
@@ -52,6 +57,7 @@ def largest_lyapunov(
     deadline: float | None = None,
     v0: np.ndarray | None = None,
     progress: Callable[[int], None] | None = None,
+    stepper: IntervalStep | None = None,
 ) -> LyapunovResult:
     """Benettin's estimate of the largest Lyapunov exponent of z' = f(t, z) from z0 at t0.
 
@@ -89,6 +95,11 @@ def largest_lyapunov(
         The initial tangent, shape (dim,) (normalised here); None: a fixed pseudo-random one.
     progress : callable or None
         progress(k) after the k-th interval.
+    stepper : callable or None
+        What integrates the state and the tangent over one interval (`IntervalStep`), e.g.
+        a `rotbeam.solve.stepping.PeriodStepper`'s `tangent` on the system of `rhs` and
+        `jac`; it then replaces `method`, `rtol` and `atol`.  None: `solve_ivp` with `method`
+        on `tangent_system`.
 
     Returns
     -------
@@ -96,17 +107,18 @@ def largest_lyapunov(
         The exponent (running mean after the last interval), its spread, the late rate, the
         section z(t0 + k interval) and the samples (`benettin_result`).
     """
-    from scipy.integrate import solve_ivp  # here: only a time-stepped run needs it
-
     start = time.perf_counter()
     z = np.asarray(z0, dtype=float).copy()
     d = z.size
     rng = np.random.default_rng(12345)
     v = rng.standard_normal(d) if v0 is None else np.asarray(v0, dtype=float).copy()
     v /= np.linalg.norm(v)
-    atol = np.broadcast_to(np.asarray(atol, dtype=float), (d,))
-    aug, aug_jac = tangent_system(rhs, jac, d)
-    kwargs = {"jac": aug_jac} if method in ("Radau", "BDF", "LSODA") else {}
+    if stepper is None:
+        atol = np.broadcast_to(np.asarray(atol, dtype=float), (d,))
+        aug, aug_jac = tangent_system(rhs, jac, d)
+        implicit = method in ("Radau", "BDF", "LSODA")
+        stepper = IvpInterval(aug, method, rtol, np.concatenate([atol, np.full(d, 1e-10)]),
+                              aug_jac if implicit else None)  # fmt: skip
     logs, section, samples = [], [z.copy()], []
     msg = ""
     for k in range(intervals):
@@ -115,29 +127,70 @@ def largest_lyapunov(
         if samples_per_interval:
             t_eval = ta + np.arange(samples_per_interval) * interval / samples_per_interval
             t_eval = np.append(t_eval, ta + interval)
-        try:
-            sol = solve_ivp(aug, (ta, ta + interval), np.concatenate([z, v]), method=method,
-                            rtol=rtol, atol=np.concatenate([atol, np.full(d, 1e-10)]),
-                            t_eval=t_eval, **kwargs)  # fmt: skip
-        except OutOfTime:  # raised by a right-hand side that keeps the deadline itself
-            msg = f"stopped by the time budget inside interval {k + 1} of {intervals}"
+        y, ys, why = stepper(ta, ta + interval, np.concatenate([z, v]), t_eval)
+        if why or not np.all(np.isfinite(y)):
+            msg = f"integration failed in interval {k + 1}: {why or 'not finite'}"
             break
-        if sol.status < 0 or not np.all(np.isfinite(sol.y[:, -1])):
-            msg = f"integration failed in interval {k + 1}: {sol.message}"
-            break
-        z, v = sol.y[:d, -1], sol.y[d:, -1]
+        z, v = y[:d], y[d:]
         g = float(np.linalg.norm(v))
         logs.append(math.log(g))
         v = v / g
         section.append(z.copy())
         if samples_per_interval:
-            samples.append(sol.y[:d, :-1])
+            samples.append(ys)
         if progress is not None:
             progress(k + 1)
         if deadline is not None and time.perf_counter() > deadline:
             msg = f"stopped by the time budget after {k + 1} of {intervals} intervals"
             break
     return benettin_result(logs, interval, section, samples, time.perf_counter() - start, msg)
+
+
+class IvpInterval:
+    """One `solve_ivp` per interval, as an `IntervalStep`; samples at t_eval come from its
+    dense output, so that the steps it took are known (`steps`).
+
+    Parameters
+    ----------
+    fun : callable
+        fun(t, y) -> y', shape (dim,).
+    method : str
+        The `solve_ivp` method.
+    rtol : float
+        Relative tolerance.
+    atol : numpy.ndarray
+        Absolute tolerances, shape (dim,).
+    jac : callable or None
+        The Jacobian of `fun` (implicit methods).
+
+    Attributes
+    ----------
+    steps : int
+        Steps of the last call.
+    """
+
+    def __init__(
+        self, fun: Callable, method: str, rtol: float, atol: np.ndarray, jac: Callable | None = None
+    ) -> None:
+        self.fun, self.method, self.rtol, self.atol = fun, method, rtol, atol
+        self.kwargs = {} if jac is None else {"jac": jac}
+        self.steps = 0
+
+    def __call__(
+        self, ta: float, tb: float, y: np.ndarray, t_eval: np.ndarray | None
+    ) -> tuple[np.ndarray, np.ndarray | None, str]:
+        """y at tb, the state y[:dim // 2] at t_eval[:-1] (or None) and '' unless solve_ivp
+        failed (then its message)."""
+        from scipy.integrate import solve_ivp  # here: only a time-stepped run needs it
+
+        sol = solve_ivp(self.fun, (ta, tb), y, method=self.method, rtol=self.rtol,
+                        atol=self.atol, dense_output=t_eval is not None,
+                        **self.kwargs)  # fmt: skip
+        self.steps = sol.t.size - 1
+        if sol.status < 0:
+            return sol.y[:, -1], None, sol.message
+        samples = None if t_eval is None else sol.sol(t_eval[:-1])[: y.size // 2]
+        return sol.y[:, -1], samples, ""
 
 
 def tangent_system(rhs: Callable, jac: Callable, d: int) -> tuple[Callable, Callable]:

@@ -39,6 +39,30 @@ class FirstOrderSystem:
         acc = self.model.acceleration(z[:n], z[n:], dl.lam(tau), dl.lam_dot(tau))
         return np.concatenate([z[n:], acc])
 
+    def tangent(self, tau: float, y: np.ndarray) -> np.ndarray:
+        """The rates of the state and of a tangent vector (`DiscreteModel.first_order_jvp`:
+        J v without forming J).
+
+        Parameters
+        ----------
+        tau : float
+            The instant.
+        y : numpy.ndarray
+            (z, v), shape (4 n,).
+
+        Returns
+        -------
+        numpy.ndarray
+            (f(tau, z), J(tau, z) v), shape (4 n,).
+        """
+        if time.perf_counter() > self.deadline:
+            raise OutOfTime
+        n, dl = self.n, self.model.dl
+        d = 2 * n
+        f, jv = self.model.first_order_jvp(y[:n], y[n:d], dl.lam(tau), dl.lam_dot(tau),
+                                           y[d : d + n], y[d + n :])  # fmt: skip
+        return np.concatenate([f, jv])
+
     def jac(self, tau: float, z: np.ndarray) -> np.ndarray:
         """The exact Jacobian of `rhs`, shape (2 n, 2 n)."""
         n, dl = self.n, self.model.dl
