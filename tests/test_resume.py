@@ -25,6 +25,7 @@ from rotbeam.model.params import Beam
 from rotbeam.report.io import atomic_write, write_csv
 from rotbeam.runs.sweeps import COLUMNS, scan_line
 from rotbeam.solve.numerics import Numerics
+from rotbeam.solve.timebudget import TimeBudget
 
 REF_BEAM = dict(L=0.040, h=0.002, b=0.010, E=1.22e6, rho=1170.2, R=0.155, gamma=0.039)
 
@@ -40,8 +41,8 @@ def test_failed_sweep_points_are_rows_with_their_reason(monkeypatch, tmp_path):
             raise np.linalg.LinAlgError("singular Jacobian (forced by the test)")
         if scene.drive.f_d == 3.0:  # the time budget runs out (in time stepping: a certified
             # orbit needs none, so the point asks for the time-stepped check)
-            num = replace(scene.numerics, max_seconds=1e-4, certify="time")
-            scene = replace(scene, numerics=num)
+            scene = replace(scene, numerics=replace(scene.numerics, certify="time"))
+            kw["time_budget"] = TimeBudget(1e-4)  # the point's part of the line's budget
         return simulate(scene, **kw)
 
     monkeypatch.setattr(rotbeam.runs.sweeps, "simulate", flaky)

@@ -1,10 +1,8 @@
 """What the Floquet step count costs and buys: each benchmark scene solved with the workflow's
-numerics (N = 40 Richardson-extrapolated with N = 20: two orbits, two Floquet passes a point);
-for every pass, the step count the monodromy takes (its first try of FIRST_STEPS, or a count of
-STEP_LADDER when the first try's spread is too large), that spread, and |mu|max from the pass as
-taken and from 2 M steps (a count tied to the orbit's instants rather than to an error
-estimate), each against the same rule converged in the step count (16 M steps, at least 3000),
-with their CPU seconds side by side (best of `repeats`, one process).
+numerics (N = 40 and N = 20: two Floquet passes a point); for every pass, the step count the
+monodromy takes (FIRST_STEPS, or a count of STEP_LADDER when that spread is too large), the
+spread, and |mu|max as taken and from 2 M steps, each against the same rule converged in the
+step count (16 M steps, at least 3000), with CPU seconds side by side (best of `repeats`).
 
     python3 -m rotbeam.paper.floquet_steps [repeats]
     python3 -m rotbeam.paper.floquet_steps --column E100000_L0.01 [config/config.yaml]
