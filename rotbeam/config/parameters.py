@@ -148,7 +148,7 @@ OPTIONS: dict[str, dict[str, Param]] = {
     },
     "response": {
         "periods": _int(
-            40,
+            100,
             "without a stable periodic state: periods of transient, then as many "
             "classified (Poincare section, Lyapunov exponent)",
             1,

@@ -363,7 +363,7 @@ def _classified(model: DiscreteModel, T: float, P: float, ly, tol: float) -> dic
 def response_of_result(
     result: SceneResult,
     N: int = 6,
-    periods: int = 40,
+    periods: int = 100,
     progress: Callable[[int, int], None] | None = None,
     time_budget: TimeBudget | None = None,
 ) -> tuple[dict, ResponseResult | None]:

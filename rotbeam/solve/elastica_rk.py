@@ -89,6 +89,9 @@ def rates(t, y, out, tangent, W, K, P, Q, par, harm):
     """out <- (Theta_t, Theta_tt) of the state y[:2n], and with `tangent` also
     J (p, q) of the direction y[2n:4n] in out[2n:4n].
 
+    One function of ~90 lines by design: the state's rates and the tangent's share every
+    intermediate sum of one compiled pass (split, each part would recompute them).
+
     Parameters
     ----------
     t : float
@@ -226,6 +229,9 @@ def _initial_step(t, y, f, t_end, rtol, atol, tangent, W, K, P, Q, par, harm):
 @njit(cache=True)
 def advance(y, stops, h, rtol, atol, tangent, W, K, P, Q, par, harm, saved, counts):
     """DOP853 from stops[0] through every later stop, as scipy's `DOP853` steps.
+
+    One loop of ~70 lines by design: step, error norm, step-size control and the stops in
+    one compiled loop, so that no Python runs between steps.
 
     Parameters
     ----------

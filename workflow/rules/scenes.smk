@@ -27,6 +27,6 @@ rule user_scenes:
         code=code_version("user_scenes"),
         scenes=config.get("user_scenes") or {},
         threshold=config["main_threshold"],
-        base=CONFIG_DIR,
+        base=lambda wildcards: CONFIG_DIR,
     script:
         "../scripts/user_scenes.py"
