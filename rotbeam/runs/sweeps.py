@@ -92,8 +92,10 @@ def sweep(
     """Dynamic and quasi-static RMS at each drive frequency of one line (continuation in f_d).
 
     Every point is `simulate` of the scene at its drive frequency, its collocation started from
-    the previous point's orbit (`rotbeam.solve.periodic.continued`), and where no orbit
-    continues it, time stepping starts from the state the previous point's beam is in.  A
+    the previous point's orbit (`rotbeam.solve.periodic.continued`); where that orbit is
+    not continued, or is unstable or not certified, the point is solved as a scene alone (its
+    collocation, then time stepping from its quasi-static state), so that its row is
+    `simulate`'s.  A
     point that fails gives a row all the same (NaN values, status -2, the exception in
     `message`); an input error stops the line.  `numerics.max_seconds` is the budget of the
     whole line: each point may spend what is left of it divided by the points left (a point
@@ -181,16 +183,12 @@ def _run_point(
 
 
 def _neighbour(res: SceneResult, before: Neighbour | None) -> Neighbour | None:
-    """Where the next point starts: this point's converged orbit and its beam's state; where
-    collocation found no orbit, the orbit before it with this point's final state (the beam
-    has moved on); None without either."""
-    dyn = res.dynamic
-    orbit = dyn.periodic
+    """Where the next point starts: this point's converged orbit; where collocation found
+    none, the orbit before it (None without either)."""
+    orbit = res.dynamic.periodic
     if orbit is not None and orbit.converged:
-        return Neighbour(orbit.theta.T, res.scene.dimensionless.omega, dyn.state)
-    if before is None or dyn.state is None:
-        return None
-    return Neighbour(before.theta, before.omega, dyn.state)
+        return Neighbour(orbit.theta.T, res.scene.dimensionless.omega)
+    return before
 
 
 def _frame(rows: list[dict]) -> pandas.DataFrame:

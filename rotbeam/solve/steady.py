@@ -107,8 +107,8 @@ def initial_state(
     model : DiscreteModel
         The model and its drive.
     start : str
-        "periodic" (the collocated orbit; when collocation fails, the neighbour's state if the
-        guess carries one, else the quasi-static state), "linear" (the linearised forced
+        "periodic" (the collocated orbit; when collocation fails, the quasi-static state, as
+        for a scene solved alone), "linear" (the linearised forced
         response), "quasistatic" (the static equilibrium and its rate, by central differences)
         or "rest" (the straight beam at rest).
     tail_tol : float
@@ -132,8 +132,6 @@ def initial_state(
         res = solve_periodic_adaptive(model, tail_tol=tail_tol, guess=seed)
         if res.converged:
             return np.concatenate([res.theta[:, 0], res.theta_t[:, 0]]), res
-        if seed is not None and seed.state is not None:  # where the neighbour's beam is
-            return np.array(seed.state, dtype=float), None
         start = "quasistatic"  # fall back to a physical state; the time stepping still decides
     if start == "linear":
         theta, rate = np.zeros(n), np.zeros(n)  # Theta and Theta_t at tau = 0
@@ -805,8 +803,8 @@ def steady_state(
         Size of the response behind the absolute tolerance (the quasi-static max |Theta|).
     guess : numpy.ndarray, Neighbour or None
         An orbit (M, n) that seeds the collocation, or a neighbouring scene's
-        (`rotbeam.solve.periodic.Neighbour`: continuation along a sweep; where no orbit
-        continues it, time stepping starts from the neighbour's state).
+        (`rotbeam.solve.periodic.Neighbour`: continuation along a sweep; where the continued
+        orbit is not a certified stable one, the scene's own start is tried next).
     state0 : numpy.ndarray or None
         (Theta, Theta_t) at tau = 0 instead of `numerics.start`: time stepping from where the
         beam is (no collocation), e.g. the previous drive frequency's final `state` in a sweep
@@ -826,14 +824,17 @@ def steady_state(
     z, periodic = starting_state(model, num, guess, state0)
     if not num.integrate and periodic is not None:
         return _from_collocation(model, num, periodic, t0)
-    orbit_fl = orbit_stability(model, periodic, candidate=True)  # an unstable one is left
+    state, why_not, periodic, orbit_fl = collocated_state(model, num, periodic, t0)
+    if state is None and guess is not None and state0 is None and num.start == "periodic":
+        # a continued orbit that is unstable or not certified (another branch; a coarse grid's
+        # resampled neighbour): the scene's own start, as solved alone, before time stepping
+        _, own = starting_state(model, num, None, None)
+        state = collocated_state(model, num, own, t0)[0]
+    if state is not None:
+        return state
     unstable_orbit = orbit_fl is not None and orbit_fl.unstable
     from_orbit = periodic is not None and periodic.converged and not unstable_orbit
-    why_not = ""
     if from_orbit:
-        state, why_not, periodic, orbit_fl = certify_refining(model, num, periodic, orbit_fl, t0)
-        if state is not None:
-            return state
         z = np.concatenate([periodic.theta[:, 0], periodic.theta_t[:, 0]])
     tol = tolerances(model, num, z, response_scale, periodic, from_orbit)
     if unstable_orbit:
@@ -859,6 +860,41 @@ def steady_state(
         floquet=fl,
         state=run.z.copy(),
     )
+
+
+def collocated_state(
+    model: DiscreteModel, num: Numerics, periodic: PeriodicResult | None, t0: float
+) -> tuple[SteadyState | None, str, PeriodicResult | None, FloquetResult | None]:
+    """The collocated orbit as the steady state when it is stable and certified
+    (`certify_refining`), with its multipliers either way.
+
+    Parameters
+    ----------
+    model : DiscreteModel
+        The model and its drive.
+    num : Numerics
+        certify, tail_tol, ss_tol and the RMS window.
+    periodic : PeriodicResult or None
+        The collocated orbit, if one was made.
+    t0 : float
+        `time.perf_counter` at the start of the steady-state search (for `seconds`).
+
+    Returns
+    -------
+    state : SteadyState or None
+        The certified orbit as the steady state, or None.
+    why_not : str
+        Why a stable orbit is not certified ('' otherwise).
+    periodic : PeriodicResult or None
+        The last orbit (refined while its certificate asked for it).
+    floquet : FloquetResult or None
+        Its multipliers (an unstable orbit's too: time stepping leaves it).
+    """
+    orbit_fl = orbit_stability(model, periodic, candidate=True)
+    unstable = orbit_fl is not None and orbit_fl.unstable
+    if periodic is None or not periodic.converged or unstable:
+        return None, "", periodic, orbit_fl
+    return certify_refining(model, num, periodic, orbit_fl, t0)
 
 
 def reported_stability(
