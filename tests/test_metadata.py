@@ -82,3 +82,15 @@ def test_every_config_key_has_a_line_in_config_readme():
         if key not in named
     ]
     assert not missing, f"config/README.md does not name {missing}"
+
+
+def test_command_line_version_is_the_package_version():
+    """`python -m rotbeam --version` prints the installed version (and `python -m rotbeam` runs
+    the command line)."""
+    import subprocess
+    import sys
+
+    out = subprocess.run([sys.executable, "-m", "rotbeam", "--version"], capture_output=True,
+                         text=True, timeout=60, check=False)  # fmt: skip
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.split() == ["rotbeam", rotbeam.__version__], out.stdout
