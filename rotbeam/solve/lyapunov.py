@@ -44,8 +44,8 @@ IntervalStep = Callable[
 
 
 def largest_lyapunov(
-    rhs: Callable[[float, np.ndarray], np.ndarray],
-    jac: Callable[[float, np.ndarray], np.ndarray],
+    rhs: Callable[[float, np.ndarray], np.ndarray] | None,
+    jac: Callable[[float, np.ndarray], np.ndarray] | None,
     z0: np.ndarray,
     interval: float,
     intervals: int,
@@ -68,10 +68,10 @@ def largest_lyapunov(
 
     Parameters
     ----------
-    rhs : callable
-        rhs(t, z) -> f, shape (dim,).
-    jac : callable
-        jac(t, z) -> df/dz, shape (dim, dim).
+    rhs : callable or None
+        rhs(t, z) -> f, shape (dim,); None with a `stepper`, which carries its own.
+    jac : callable or None
+        jac(t, z) -> df/dz, shape (dim, dim); None with a `stepper`.
     z0 : numpy.ndarray
         Initial state, shape (dim,).
     interval : float
@@ -97,8 +97,8 @@ def largest_lyapunov(
         progress(k) after the k-th interval.
     stepper : callable or None
         What integrates the state and the tangent over one interval (`IntervalStep`), e.g.
-        a `rotbeam.solve.stepping.PeriodStepper`'s `tangent` on the system of `rhs` and
-        `jac`; it then replaces `method`, `rtol` and `atol`.  None: `solve_ivp` with `method`
+        a `rotbeam.solve.stepping.PeriodStepper`'s `tangent`; it then replaces `rhs`, `jac`,
+        `method`, `rtol` and `atol`.  None: `solve_ivp` with `method`
         on `tangent_system`.
 
     Returns

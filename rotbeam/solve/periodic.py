@@ -552,8 +552,8 @@ def solve_periodic_adaptive(
         Newton's relative step tolerance.
     guess : numpy.ndarray, Neighbour or None
         An orbit (M', n) of a neighbouring scene, or a `Neighbour`: continuation
-        (`continued`); when Newton fails from it, from the linear guess, then by continuation
-        in the amplitude.
+        (`continued`); where no continued orbit converges and refines, the scene is solved
+        as without a guess: from the linear guess, then by continuation in the amplitude.
 
     Returns
     -------
@@ -566,7 +566,8 @@ def solve_periodic_adaptive(
     resolved = None  # a continued orbit on more instants than M, kept in case M cannot refine
     if res is not None and res.M != M:
         resolved, res = res, _on(model, res, M, rtol)
-    if res is None:
+    alone = res is None
+    if alone:
         res = solve_periodic(model, M, rtol=rtol)
     if not res.converged:
         res = _amplitude_continuation(model, M, rtol) or res
@@ -577,6 +578,8 @@ def solve_periodic_adaptive(
             # neighbour's instants resolved (10 rad/s, 7.54 Hz, N = 20: M = 65, tail 2.8e-4)
             finer, resolved = resolved, None
         res = finer
+    if not res.converged and not alone:  # the continued orbit did not refine: solve alone
+        return solve_periodic_adaptive(model, M0, tail_tol, M_max, rtol)
     if res.converged and res.harmonic_tail > tail_tol:
         res.message += f"; harmonic tail {res.harmonic_tail:.2g} > {tail_tol:g} at M={res.M}"
     return res

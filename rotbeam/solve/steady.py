@@ -825,9 +825,11 @@ def steady_state(
     if not num.integrate and periodic is not None:
         return _from_collocation(model, num, periodic, t0)
     state, why_not, periodic, orbit_fl = collocated_state(model, num, periodic, t0)
-    if state is None and guess is not None and state0 is None and num.start == "periodic":
+    continued_orbit = guess is not None and state0 is None and num.start == "periodic"
+    if state is None and continued_orbit and periodic is not None and periodic.converged:
         # a continued orbit that is unstable or not certified (another branch; a coarse grid's
         # resampled neighbour): the scene's own start, as solved alone, before time stepping
+        # (an orbit that did not converge was already solved alone: solve_periodic_adaptive)
         _, own = starting_state(model, num, None, None)
         state = collocated_state(model, num, own, t0)[0]
     if state is not None:
