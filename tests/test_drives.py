@@ -272,3 +272,14 @@ def test_disk_angle_is_the_integral_of_the_speed(tmp_path):
     for drive in (two, profile):
         trapezoid = np.trapezoid([drive.omega(x) for x in ts], ts)
         assert drive.angle(1.3) == pytest.approx(trapezoid, rel=1e-7)
+
+
+def test_scene_files_names_the_csv_files_a_scene_reads():
+    """The workflow's user_scenes inputs: a sampled profile (plain or {file, harmonics}) and a
+    move; a named shape, a sine or a malformed spec read none."""
+    from rotbeam.runs.scene import scene_files
+
+    assert scene_files({"drive": {"profile": "p.csv", "move": "m.csv"}}) == ["p.csv", "m.csv"]
+    assert scene_files({"drive": {"profile": {"file": "q.csv", "harmonics": 5}}}) == ["q.csv"]
+    assert scene_files({"drive": {"profile": {"shape": "s-curve"}}}) == []
+    assert scene_files({"drive": {"omega0": 5}}) == [] and scene_files({"drive": 3}) == []

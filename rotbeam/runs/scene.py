@@ -41,6 +41,8 @@ from ..solve.steady import SteadyState, steady_state
 from ..solve.timebudget import TimeBudget
 
 CLASSES = {"beam": Beam, "drive": Drive, "effects": Effects, "numerics": Numerics}
+#: the drive keys that name a CSV file, and its columns
+DRIVE_FILES = {"profile": ("phase", "omega"), "move": ("t", "omega")}
 
 
 @dataclass(frozen=True)
@@ -119,6 +121,31 @@ def build_scene(spec: dict[str, Any] | None = None, base: str | Path = ".") -> S
     return scene
 
 
+def scene_files(spec: dict[str, Any]) -> list[str]:
+    """The CSV files a scene spec reads (a sampled profile, a move), as written in it: relative
+    to the scene's folder.
+
+    Parameters
+    ----------
+    spec : dict
+        A scene spec (sections beam, drive, effects, numerics), unchecked.
+
+    Returns
+    -------
+    list of str
+        The file paths, in the order of `DRIVE_FILES`.
+    """
+    drive = spec.get("drive") if isinstance(spec, dict) else None
+    out = []
+    for key in DRIVE_FILES:
+        value = drive.get(key) if isinstance(drive, dict) else None
+        if isinstance(value, dict):
+            value = value.get("file")
+        if isinstance(value, str):
+            out.append(value)
+    return out
+
+
 def drive_of(values: dict[str, Any], base: Path) -> Drive:
     """The Drive of a scene's drive section: harmonics as mappings {k, amplitude, phase}, a
     profile as a CSV file (columns phase, omega) or a named shape {shape, omega_min,
@@ -150,7 +177,7 @@ def drive_of(values: dict[str, Any], base: Path) -> Drive:
         )
     if values.get("harmonics") is not None:
         values["harmonics"] = _harmonics(values["harmonics"])
-    for key, columns in (("profile", ("phase", "omega")), ("move", ("t", "omega"))):
+    for key, columns in DRIVE_FILES.items():
         value = values.get(key)
         if value is None:
             continue

@@ -12,6 +12,7 @@ from snakemake.utils import validate
 import rotbeam
 from rotbeam import provenance
 from rotbeam.config.errors import RotbeamInputError
+from rotbeam.runs.scene import scene_files
 from rotbeam.paper.studies import (
     REF,
     convergence_lines,
@@ -162,16 +163,10 @@ CONFIG_DIR = os.path.relpath(Path(workflow.basedir) / "config")
 def user_scene_files():
     """The CSV files the user scenes read (a move, a sampled profile): the rule's inputs, so an
     edited file reruns it."""
-    out = []
-    for spec in (config.get("user_scenes") or {}).values():
-        drive = (spec or {}).get("drive", {}) if isinstance(spec, dict) else {}
-        for key in ("move", "profile"):
-            value = drive.get(key) if isinstance(drive, dict) else None
-            if isinstance(value, dict):
-                value = value.get("file")
-            if isinstance(value, str):
-                out.append(os.path.join(CONFIG_DIR, value))
-    return sorted(set(out))
+    specs = (config.get("user_scenes") or {}).values()
+    return sorted(
+        {os.path.join(CONFIG_DIR, f) for spec in specs for f in scene_files(spec)}
+    )
 
 
 # --- paper against reproduction (rules/reproduction.smk) ---
