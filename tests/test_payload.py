@@ -14,7 +14,7 @@ from scipy.optimize import brentq
 from rotbeam.model.elastica import DiscreteElastica
 from rotbeam.model.modes import damping_ratio, dimensionless_frequencies, modes
 from rotbeam.model.params import Beam, Dimensionless, Drive, Effects
-from rotbeam.model.surrogate import SurrogateModel
+from rotbeam.model.surrogate import SurrogateModel, analytical_boundary
 from rotbeam.runs.scene import Scene, build_scene, simulate
 from rotbeam.solve.numerics import Numerics
 from rotbeam.solve.quasistatic import solve_static
@@ -178,3 +178,19 @@ def test_damping_ratio_with_a_payload_is_the_damped_eigenvalues(beam):
     # first order in eta: the relative error is O(zeta^2) ~ 1e-3 at the largest zeta here (0.13)
     assert damping_ratio(beam) == pytest.approx(exact, rel=2 * exact**2 + 1e-6)
     assert damping_ratio(Beam(tip_mass=1e-12)) == pytest.approx(Beam().zeta, rel=2e-4)
+
+
+def test_analytical_boundary_carries_the_payload():
+    """E*^2 = E_n^2 + S_1 G a^2 C_max: its slope in C_max is the loaded beam's Southwell
+    coefficient, the slope of (2 pi f_0)^2 in Omega^2 of the discrete model's loaded first mode
+    (N = 80, Omega <= 2 rad/s).  S_1 is a Rayleigh quotient on the bare beam's mode: 1.8 % below
+    the loaded slope at mu = 0.5; the bare beam's S_1 would be 18 % above it."""
+    bare = Beam()
+    beam = Beam(tip_mass=0.5 * bare.rhoA * bare.L)
+    G, a, c_max, omega = beam.G, 1.0, 1e-3 * beam.G, 2.0
+    e0, e1 = (analytical_boundary(beam, c, 1.0, amplitude=a) for c in (0.0, c_max))
+    slope = (e1 * e1 - e0 * e0) / (G * a * a * c_max)
+    f0, f1 = modes(beam, 0.0, 1, 80)[0], modes(beam, omega, 1, 80)[0]
+    loaded = ((2 * math.pi * f1) ** 2 - (2 * math.pi * f0) ** 2) / omega**2
+    assert slope == pytest.approx(loaded, rel=0.025)
+    assert e0 == pytest.approx(G * a * 2 * math.pi * f0, rel=1e-3)

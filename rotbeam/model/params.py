@@ -154,9 +154,13 @@ class Beam:
         (`tip_loaded_root`)."""
         if self.tip_mass == 0.0 and self.tip_inertia == 0.0:
             return BETA1**2 * self.f_s
-        mu = self.tip_mass / (self.rhoA * self.L)
-        j = self.tip_inertia / (self.rhoA * self.L**3)
-        return tip_loaded_root(mu, j) ** 2 * self.f_s
+        return tip_loaded_root(*self.payload_ratios) ** 2 * self.f_s
+
+    @property
+    def payload_ratios(self) -> tuple[float, float]:
+        """The payload in units of the beam: (m_t / (rho A L), J_t / (rho A L^3)),
+        dimensionless."""
+        return self.tip_mass / (self.rhoA * self.L), self.tip_inertia / (self.rhoA * self.L**3)
 
     @property
     def R_o(self) -> float:

@@ -168,8 +168,7 @@ def southwell_frequency_hz(beam: Beam, omega: float, softening: bool = True) -> 
     float
         f0 [Hz].
     """
-    mu, j = beam.tip_mass / (beam.rhoA * beam.L), beam.tip_inertia / (beam.rhoA * beam.L**3)
-    s1 = southwell_coefficient(beam.hub_ratio, softening, mu, j)
+    s1 = southwell_coefficient(beam.hub_ratio, softening, *beam.payload_ratios)
     return math.sqrt((2.0 * math.pi * beam.f_n) ** 2 + s1 * omega * omega) / (2.0 * math.pi)
 
 
@@ -610,8 +609,7 @@ def analytical_boundary(
     c : float
         The ratio f_d* / f0, dimensionless.
     S1 : float or None
-        Southwell coefficient; default the in-plane one of the beam's hub ratio (without its
-        payload).
+        Southwell coefficient; default the in-plane one of the beam's hub ratio and payload.
     amplitude : float
         Velocity amplitude a [rad/s].
 
@@ -620,7 +618,9 @@ def analytical_boundary(
     float or numpy.ndarray
         E*, dimensionless, a float for a scalar `c_max`.
     """
-    s1 = southwell_coefficient(beam.hub_ratio, True) if S1 is None else float(S1)
+    if S1 is None:
+        S1 = southwell_coefficient(beam.hub_ratio, True, *beam.payload_ratios)
+    s1 = float(S1)
     G = beam.G
     e_n = G * amplitude * 2.0 * math.pi * beam.f_n
     out = c * np.sqrt(e_n * e_n + s1 * G * amplitude**2 * np.asarray(c_max, dtype=float))
