@@ -55,6 +55,26 @@ def test_ringdown_recovers_gamma_within_its_error():
     assert abs(fit.t_decay - 2 * RHOA / 0.039) < 3 * fit.t_decay_stderr
 
 
+def test_ringdown_errors_do_not_depend_on_the_sign_of_the_fitted_frequency():
+    """The fit may land on f < 0 (the same curve with w -> -w, B2 -> -B2): the amplitude's and
+    phase's standard errors, which use the covariance of (B1, B2), must be those of f > 0."""
+    from types import SimpleNamespace
+
+    from rotbeam.analysis.ringdown import _assess, _jac
+
+    tt, y = T, ring(T, noise=0.2)
+    up = fit_ringdown(Ringdown(tt, y))
+    w = 2 * np.pi * up.f_hz
+    b1, b2 = up.amplitude * np.cos(up.phase), -up.amplitude * np.sin(up.phase)
+    x = np.array([-up.f_hz, 1.0 / up.t_decay, b1, -b2, up.offset])
+    fun = np.exp(-x[1] * tt) * (b1 * np.cos(w * tt) + b2 * np.sin(w * tt)) + up.offset - y
+    sol = SimpleNamespace(x=x, jac=_jac(x, tt), fun=fun, success=True, message="")
+    down = _assess(sol, tt, y, float(tt[-1] - tt[0]), Beam())
+    assert down.f_hz == pytest.approx(up.f_hz, rel=1e-12)
+    for key in ("amplitude_stderr", "phase_stderr", "f_hz_stderr", "gamma_stderr"):
+        assert getattr(down, key) == pytest.approx(getattr(up, key), rel=1e-6), key
+
+
 def test_ringdown_intervals_cover_about_95_percent():
     draws = 300
     hits = sum(

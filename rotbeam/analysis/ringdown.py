@@ -215,12 +215,13 @@ def _assess(sol, tt: np.ndarray, y: np.ndarray, duration: float, beam: Beam) -> 
     """Standard errors from the Jacobian and the residual variance; refuse what cannot be
     trusted (see the module docstring)."""
     f, s, b1, b2, c = sol.x
-    if f < 0:  # the same curve with w -> -w, B2 -> -B2
+    J = sol.jac
+    if f < 0:  # the same curve with w -> -w, B2 -> -B2, and its Jacobian's columns with them
         f, b2 = -f, -b2
+        J = J * np.array([-1.0, 1.0, 1.0, -1.0, 1.0])
     n, p = y.size, 5
     rss = float(np.sum(sol.fun**2))
     s2 = rss / (n - p)
-    J = sol.jac
     try:
         cov = s2 * np.linalg.inv(J.T @ J)
     except np.linalg.LinAlgError:
