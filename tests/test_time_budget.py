@@ -64,6 +64,21 @@ def test_budget_too_small_for_one_period_says_so(tmp_path):
     assert out["rms_dynamic"] != out["rms_dynamic"]  # NaN: no period of the steady state seen
 
 
+def test_collocation_stops_at_the_budget():
+    """The hard scene's collocation at N = 40 (M refined up to 129 and amplitude continuation:
+    1.7 s of Newton steps on one core here) stops at a budget of 0.2 s, within the Newton step
+    in flight, and says that it cut the collocation."""
+    from rotbeam.solve.steady import steady_state
+
+    model = Scene(Beam(), Drive(5.0, 3.0, 7.0)).model(40)
+    t0 = time.perf_counter()
+    st = steady_state(model, Numerics(N=40), time_budget=TimeBudget(0.2))
+    wall = time.perf_counter() - t0
+    assert st.status == 1 and not st.converged and st.periods == 0
+    assert "cut the collocation at N = 40" in st.message, st.message
+    assert wall < 0.2 + 0.3, wall
+
+
 def test_classification_spent_budget_has_no_class():
     """`response_of` with a spent budget integrates no section period and classifies nothing."""
     scene = Scene(Beam(), Drive(5.0, 3.0, 7.0))

@@ -22,6 +22,7 @@ import numpy as np
 import scipy.linalg as sla
 
 from ..model.base import DiscreteModel
+from .timebudget import check_deadline
 
 #: an orbit counts as stable when its largest |mu| is below 1 - STABLE_MARGIN: the monodromy is
 #: accurate to ~1e-6 here (tests), far below the margins the verdicts rest on
@@ -317,6 +318,7 @@ def _monodromy(jac, Z, period, steps, rhs, rows, coarse: bool):
     t = (np.arange(steps) + 0.5) * (period / steps)
     fine = low = None
     for first in range(0, steps, BLOCK):
+        check_deadline()
         Js, r, has_defect = _steps_data(jac, Z, period, t[first : first + BLOCK], rhs, rows)
         E = _step_exponentials(zip(Js, r, strict=True), period / steps)
         fine = _product(E, fine)

@@ -8,6 +8,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .timebudget import check_deadline
+
 #: the line search stops halving the step below this fraction of it
 MIN_STEP_FRACTION = 1e-3
 
@@ -84,12 +86,19 @@ def newton(
     Returns
     -------
     NewtonResult
+
+    Raises
+    ------
+    OutOfTime
+        When a time budget watches the caller (`rotbeam.solve.timebudget.TimeBudget.watch`)
+        and is spent before a step.
     """
     r = residual(x)
     norm = float(np.max(np.abs(r)))
     if norm == 0.0:
         return NewtonResult(x, r, norm, True, 0, "exact")
     for it in range(1, maxiter + 1):
+        check_deadline()
         try:
             step = direction(x, r)
         except (np.linalg.LinAlgError, ValueError):

@@ -40,8 +40,8 @@ from .stability import (
     stability_note,
     window_stability,
 )
-from .system import FirstOrderSystem, OutOfTime
-from .timebudget import TimeBudget
+from .system import FirstOrderSystem
+from .timebudget import OutOfTime, TimeBudget
 
 
 @dataclass
@@ -810,8 +810,9 @@ def steady_state(
         beam is (no collocation), e.g. the previous drive frequency's final `state` in a sweep
         that shows hysteresis.
     time_budget : TimeBudget or None
-        The wall-time budget the time stepping stops at (a command's, shared with its other
-        phases); None: `numerics.max_seconds` from the call.
+        The wall-time budget the collocation, its Floquet passes and the time stepping stop
+        at (a command's, shared with its other phases); None: `numerics.max_seconds` from the
+        call.
 
     Returns
     -------
@@ -821,17 +822,23 @@ def steady_state(
     """
     num = numerics if numerics is not None else Numerics()
     t0 = time.perf_counter()
-    z, periodic = starting_state(model, num, guess, state0)
-    if not num.integrate and periodic is not None:
-        return _from_collocation(model, num, periodic, t0)
-    state, why_not, periodic, orbit_fl = collocated_state(model, num, periodic, t0)
-    continued_orbit = guess is not None and state0 is None and num.start == "periodic"
-    if state is None and continued_orbit and periodic is not None and periodic.converged:
-        # a continued orbit that is unstable or not certified (another branch; a coarse grid's
-        # resampled neighbour): the scene's own start, as solved alone, before time stepping
-        # (an orbit that did not converge was already solved alone: solve_periodic_adaptive)
-        _, own = starting_state(model, num, None, None)
-        state = collocated_state(model, num, own, t0)[0]
+    budget = time_budget or TimeBudget(num.max_seconds, t0)
+    try:
+        with budget.watch():  # the collocation and its Floquet passes stop at the budget too
+            z, periodic = starting_state(model, num, guess, state0)
+            if not num.integrate and periodic is not None:
+                return _from_collocation(model, num, periodic, t0)
+            state, why_not, periodic, orbit_fl = collocated_state(model, num, periodic, t0)
+            continued_orbit = guess is not None and state0 is None and num.start == "periodic"
+            if state is None and continued_orbit and periodic is not None and periodic.converged:
+                # a continued orbit that is unstable or not certified (another branch; a
+                # coarse grid's resampled neighbour): the scene's own start, as solved alone,
+                # before time stepping (an orbit that did not converge was already solved
+                # alone: solve_periodic_adaptive)
+                _, own = starting_state(model, num, None, None)
+                state = collocated_state(model, num, own, t0)[0]
+    except OutOfTime:
+        return _collocation_cut(model, budget, t0)
     if state is not None:
         return state
     unstable_orbit = orbit_fl is not None and orbit_fl.unstable
@@ -841,7 +848,7 @@ def steady_state(
     tol = tolerances(model, num, z, response_scale, periodic, from_orbit)
     if unstable_orbit:
         z = leave_orbit(z, orbit_fl, tol.scale)
-    stepper = PeriodStepper(model, num, tol, time_budget or TimeBudget(num.max_seconds, t0))
+    stepper = PeriodStepper(model, num, tol, budget)
     run = march(stepper, z, from_orbit, progress)
     win = rms_window(stepper, run, periodic, from_orbit)
     status, message, fl = reported_stability(model, num, win, orbit_fl, from_orbit, periodic)
@@ -861,6 +868,23 @@ def steady_state(
         periodic=periodic,
         floquet=fl,
         state=run.z.copy(),
+    )
+
+
+def _collocation_cut(model: DiscreteModel, budget: TimeBudget, t0: float) -> SteadyState:
+    """No steady state: the budget was spent in the collocation or its Floquet passes, before
+    any time stepping (one sample, the straight beam, stands for the missing window)."""
+    where = f"the collocation at N = {model.grid.N}"
+    return SteadyState(
+        tau=np.zeros(1),
+        theta=np.zeros((model.n, 1)),
+        y_m=np.atleast_1d(model.midspan(np.zeros((model.n, 1)))),
+        converged=False,
+        status=1,
+        message=f"no steady state: {budget.cut(where)}, before any time stepping",
+        periods=0,
+        transient=math.inf,
+        seconds=time.perf_counter() - t0,
     )
 
 

@@ -9,10 +9,9 @@ import time
 import numpy as np
 
 from ..model.base import DiscreteModel
+from .timebudget import OutOfTime
 
-
-class OutOfTime(Exception):
-    """Raised inside the right-hand side when the wall-time budget is spent."""
+__all__ = ["FirstOrderSystem", "OutOfTime"]
 
 
 class FirstOrderSystem:

@@ -1,9 +1,37 @@
-"""A wall-time budget that every phase of one command shares."""
+"""A wall-time budget that every phase of one command shares, and the deadline a phase's
+solvers check while a budget watches them."""
 
 from __future__ import annotations
 
 import time
+from collections.abc import Iterator
+from contextlib import contextmanager
+from contextvars import ContextVar
 from dataclasses import dataclass, field
+
+
+class OutOfTime(Exception):
+    """Raised inside a solver when the wall-time budget is spent."""
+
+
+#: the deadline (`time.perf_counter` value) of the budget watching the current phase, if any
+_WATCHED: ContextVar[float | None] = ContextVar("rotbeam_deadline", default=None)
+
+
+def check_deadline() -> None:
+    """Raise `OutOfTime` when a budget watches this phase (`TimeBudget.watch`) and is spent.
+
+    The solvers without a time stepper of their own (the collocation's Newton steps, the
+    Floquet pass) call it between their steps; outside a watch it does nothing.
+
+    Raises
+    ------
+    OutOfTime
+        When the watching budget's deadline has passed.
+    """
+    deadline = _WATCHED.get()
+    if deadline is not None and time.perf_counter() >= deadline:
+        raise OutOfTime
 
 
 @dataclass(frozen=True)
@@ -78,3 +106,18 @@ class TimeBudget:
         if self.whole is not None:
             size = f"({self.seconds:.3g} s of the command's {self.whole:.3g} s)"
         return f"the time budget {size} cut {phase} after {self.elapsed():.3g} s"
+
+    @contextmanager
+    def watch(self) -> Iterator[TimeBudget]:
+        """Within the block, `check_deadline` raises `OutOfTime` once this budget is spent.
+
+        Yields
+        ------
+        TimeBudget
+            This budget.
+        """
+        token = _WATCHED.set(self.deadline)
+        try:
+            yield self
+        finally:
+            _WATCHED.reset(token)
