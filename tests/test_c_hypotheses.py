@@ -61,6 +61,23 @@ def test_a_scene_of_ours_matches_simulate():
     assert d["rms_quasistatic"] == pytest.approx(ref.rms_quasistatic, rel=1e-6)
 
 
+@pytest.mark.parametrize("name", ["qs_scale_1.05", "ym_node_matlab", "zeta_0.017"])
+def test_a_line_equals_its_scenes_run_one_by_one(ours, name):
+    """`line_scan` shares one dynamic run a line among hypotheses that differ only in what is
+    read from it (READOUT_FIELDS; zeta through the beam it runs on): its rows are each point's
+    `scene_delta`, run one after the other with the orbit carried along, to the last digit."""
+    lines = run(name)["lines"]
+    assert lines[0]["f_d"].size == SCAN.points
+    state: dict = {}
+    for k, f_d in enumerate(lines[0]["f_d"]):
+        d = scene_delta(name, BEAM, lines[0]["omega0"], float(f_d), SCAN, state)
+        assert d["delta_rms"] == lines[0]["delta"][k]
+        assert d["rms_dynamic"] == lines[0]["rms_dynamic"][k]
+    # ours' run and readout; another readout of ours' run; another beam's run
+    shared = np.array_equal(lines[0]["rms_dynamic"], ours["lines"][0]["rms_dynamic"])
+    assert shared == (name == "qs_scale_1.05")
+
+
 def test_continuum_quasistatic_matches_solve_bvp():
     dl = Dimensionless.from_physical(BEAM, Drive(OMEGA0, 1.0, 2.0))
     taus = np.array([0.0, 0.3 * dl.period])

@@ -8,6 +8,7 @@ workflow rule ``c_hypotheses``.  The options, the method and the verdict: docs/c
 
 from __future__ import annotations
 
+import functools
 import math
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, replace
@@ -429,7 +430,20 @@ def scene_delta(
     N, m = h.N or scan.N, scan.samples
     drive = Drive(omega0=omega0, amplitude=scan.amplitude, f_d=f_d)
     dl = Dimensionless.from_physical(beam, drive, Effects())
-    grid, theta, taus = dynamic_response(h, dl, h.N_dyn or N, m, state, beam.T)
+    run = dynamic_response(h, dl, h.N_dyn or N, m, state, beam.T)
+    return {**_readout(h, dl, N, m, *run), "f_d": f_d, "omega0": omega0}
+
+
+#: Hypothesis fields that change only what is read from the dynamic response (or, zeta, the
+#: beam it runs on): hypotheses that differ in these alone share one dynamic run a line
+#: (`_line_dynamics`)
+READOUT_FIELDS = ("description", "qs", "s_dyn", "N_dyn", "measure", "f0", "zeta",
+                  "denominator", "mean", "qs_scale", "N")  # fmt: skip
+
+
+def _readout(h: Hypothesis, dl: Dimensionless, N: int, m: int, grid, theta, taus) -> dict:
+    """RMS_dyn, RMS_QS, Delta RMS and the sample count of one scene's dynamic response under a
+    hypothesis (`scene_delta` without the run)."""
     s_dyn = h.s_dyn if h.s_dyn is not None else (grid.N // 2 - 1) / grid.N
     y_dyn = midspan_measure(grid, theta, s_dyn, h.measure, dl, taus)
     if h.dynamics in ("steps", "steps_rest"):  # QS on a uniform grid of one period
@@ -438,7 +452,27 @@ def scene_delta(
     r_dyn, r_qs = _rms(y_dyn, h.mean), h.qs_scale * _rms(y_qs, h.mean)
     den = r_dyn if h.denominator == "dyn" else r_qs
     return {"rms_dynamic": r_dyn, "rms_quasistatic": r_qs, "delta_rms": abs(r_dyn - r_qs) / den,
-            "f_d": f_d, "omega0": omega0, "samples": int(np.size(y_dyn))}  # fmt: skip
+            "samples": int(np.size(y_dyn))}  # fmt: skip
+
+
+@functools.lru_cache(maxsize=64)
+def _line_dynamics(
+    dynamics: Hypothesis,
+    beam: Beam,
+    omega0: float,
+    fds: tuple[float, ...],
+    N: int,
+    m: int,
+    amplitude: float,
+) -> tuple:
+    """(dl, grid, theta, taus) at every f_d of a line, each orbit continued from the one before;
+    computed once a process for all hypotheses that share `dynamics` (READOUT_FIELDS reset)."""
+    state: dict = {}
+    out = []
+    for f_d in fds:
+        dl = Dimensionless.from_physical(beam, Drive(omega0, amplitude, f_d), Effects())
+        out.append((dl, *dynamic_response(dynamics, dl, N, m, state, beam.T)))
+    return tuple(out)
 
 
 def _peak_frequency_hz(beam: Beam, omega0: float, scan: ScanSpec) -> float:
@@ -524,8 +558,11 @@ def line_scan(h: Hypothesis | str, beam: Beam, c_max: float, scan: ScanSpec = Sc
     omega0 = omega0_for_cmax(beam, c_max, scan.amplitude)
     f_ref = resonance_frequency_hz(beam, abs(omega0) + scan.amplitude)
     fds = f_ref * np.linspace(scan.lo, scan.hi, scan.points)
-    state: dict = {}
-    rows = [scene_delta(h, beam, omega0, float(f), scan, state) for f in fds]
+    hb, N, m = _beam_for(beam, h), h.N or scan.N, scan.samples
+    dynamics = replace(h, **{k: getattr(Hypothesis(), k) for k in READOUT_FIELDS})
+    runs = _line_dynamics(dynamics, hb, float(omega0), tuple(float(f) for f in fds),
+                          h.N_dyn or N, m, scan.amplitude)  # fmt: skip
+    rows = [_readout(h, dl, N, m, *run) for dl, *run in runs]
     return {"c_max": c_max, "omega0": omega0, "f_ref": f_ref, "f_d": fds,
             "delta": np.array([r["delta_rms"] for r in rows]),
             "rms_dynamic": np.array([r["rms_dynamic"] for r in rows]),
