@@ -101,7 +101,7 @@ CURVES: dict[str, Curve] = {
         ),
         Curve(
             "default",
-            "periodic collocation + Radau verification (default)",
+            "periodic collocation, certified by its monodromy (default)",
             {"start": "periodic"},
             ("rtol", "ss_tol", "tail_tol"),
         ),

@@ -236,7 +236,8 @@ def _grid_panel(ax, runs: pd.DataFrame, scenes: list[str], plan: BenchPlan) -> N
     ax.set_title("grid study (default), error vs converged")
     ax.set_xlabel("wall time [s]")
     ax.set_ylabel("relative error of RMS($y_m$)")
-    ax.legend(fontsize=6, ncol=2)
+    # beside the panel: inside it the legend would cover the points of the finest grids
+    ax.legend(fontsize=6, loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0)
 
 
 def write_outputs(runs: pd.DataFrame, refs: pd.DataFrame, plan: BenchPlan, stem: str) -> None:
