@@ -118,6 +118,9 @@ SECTIONS: dict[str, dict[str, Param]] = {
         ),  # fmt: skip
         "start": _choice("periodic", "initial state", "periodic", "linear", "quasistatic", "rest"),
         "tail_tol": _real(1e-3, "harmonic tail of the collocated orbit", "", 1e-12, 0.1),
+        "floquet_tol": _real(
+            1e-5, "how closely the reported Floquet |mu|max is resolved", "", 1e-9, 1.0
+        ),  # fmt: skip
         "integrate": _bool(True, "verify the collocated orbit by time stepping"),
         "certify": _choice(
             "monodromy", "what accepts an attracting collocated orbit", "monodromy", "time"

@@ -21,6 +21,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.linalg as sla
 
+from ..config.parameters import default
 from ..model.base import DiscreteModel
 from .timebudget import check_deadline
 
@@ -39,8 +40,9 @@ FIRST_STEPS = 12
 #: none below their product (docs/stability.md, "How the multipliers are computed")
 STEP_LADDER = (FIRST_STEPS, 37, 112, 337, 1012)
 
-#: a product stands when its |mu|max and the one it is checked against differ by at most this ...
-SPREAD_TOL = 1e-5
+#: a product stands when its |mu|max and the one it is checked against differ by at most this
+#: (the registry's numerics.floquet_tol, what a reported |mu|max carries by default) ...
+SPREAD_TOL = default("numerics", "floquet_tol")
 #: ... and their fixed-point offsets by this much of the offset or of the orbit's size
 OFFSET_RTOL = 1e-2
 OFFSET_ATOL = 1e-8

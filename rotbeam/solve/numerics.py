@@ -32,6 +32,10 @@ class Numerics:
     max_seconds: float = _d("max_seconds")  #: ... or after this much wall time
     start: str = _d("start")  #: initial state: "periodic", "linear", "quasistatic" or "rest"
     tail_tol: float = _d("tail_tol")  #: harmonic tail of the periodic (collocation) start
+    #: the reported |mu|max stands to this (the Floquet step ladder's spread,
+    #: rotbeam.solve.stability.reported_multipliers); 1 leaves it at what the stability verdict
+    #: and the monodromy certificate needed
+    floquet_tol: float = _d("floquet_tol")
     integrate: bool = _d("integrate")  #: verify the collocated orbit by time stepping
     #: "monodromy": an attracting orbit whose defect-based offset is small is accepted without
     #: the verification period; "time": always one period of time stepping (rotbeam.solve.steady)

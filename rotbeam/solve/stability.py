@@ -68,7 +68,7 @@ def orbit_stability(
         stability verdict alone (|mu|max to a tenth of its distance from 1), and the
         fixed-point offset is left to `monodromy_certificate`, which weighs it with its
         spread between two counts and asks for more where that is ambiguous.  An orbit that
-        is reported gets |mu|max to SPREAD_TOL (`reported_multipliers`).
+        is reported gets |mu|max to its `Numerics.floquet_tol` (`reported_multipliers`).
 
     Returns
     -------
@@ -83,10 +83,13 @@ def orbit_stability(
 
 
 def reported_multipliers(
-    model: DiscreteModel, periodic: PeriodicResult, fl: FloquetResult | None
+    model: DiscreteModel,
+    periodic: PeriodicResult,
+    fl: FloquetResult | None,
+    mu_tol: float = SPREAD_TOL,
 ) -> FloquetResult | None:
     """The multipliers of a collocated orbit that is reported: `fl` (a candidate's), with the
-    step ladder gone on until |mu|max stands to SPREAD_TOL.
+    step ladder gone on until |mu|max stands to `mu_tol`.
 
     Parameters
     ----------
@@ -96,18 +99,23 @@ def reported_multipliers(
         The orbit.
     fl : FloquetResult or None
         Its multipliers as the candidate check left them.
+    mu_tol : float
+        How closely |mu|max is resolved (`Numerics.floquet_tol`): the spread of two step
+        counts it must stand within.  1 keeps `fl`: the candidate check already resolved it to
+        a tenth of its distance from 1, enough for the stability verdict.
 
     Returns
     -------
     FloquetResult or None
-        `fl` when its spread is already within SPREAD_TOL (or it has no comparison: a fixed
+        `fl` when its spread is already within `mu_tol` (or it has no comparison: a fixed
         count), else the finer pass.
     """
-    if fl is None or fl.coarse is None or fl.spread <= SPREAD_TOL:
+    if fl is None or fl.coarse is None or fl.spread <= mu_tol:
         return fl
     if fl.steps >= STEP_LADDER[-1]:
         return fl
-    return beam_floquet(model, periodic.theta, periodic.theta_t, after=fl, offset_atol=math.inf)
+    return beam_floquet(model, periodic.theta, periodic.theta_t, after=fl, offset_atol=math.inf,
+                        mu_tol=mu_tol)  # fmt: skip
 
 
 def leave_orbit(z: np.ndarray, fl: FloquetResult, size: float) -> np.ndarray:

@@ -279,7 +279,7 @@ def _from_collocation(
     cert = _certificate(fl, res, num, model.dl)
     if cert is not None:
         msg += f"; {cert.describe()}"
-    fl = reported_multipliers(model, res, fl)
+    fl = reported_multipliers(model, res, fl, num.floquet_tol)
     msg += stability_note(fl)
     unstable = ok and fl is not None and fl.unstable
     if unstable:
@@ -344,7 +344,7 @@ def accept_certified(
         return None, "", None
     if not cert.certified:
         return None, f"not certified by the monodromy ({cert.describe()}); ", cert
-    fl = reported_multipliers(model, periodic, fl)
+    fl = reported_multipliers(model, periodic, fl, num.floquet_tol)
     message = (
         f"collocation orbit (M={periodic.M}, harmonic tail {periodic.harmonic_tail:.2g}) "
         f"certified by the monodromy ({cert.describe()})" + stability_note(fl)
@@ -949,7 +949,7 @@ def reported_stability(
         Whether the march started from the collocated orbit.
     periodic : PeriodicResult or None
         The collocated orbit: where its multipliers are the ones reported, their step count
-        goes on until |mu|max stands to SPREAD_TOL (`reported_multipliers`).
+        goes on until |mu|max stands to num.floquet_tol (`reported_multipliers`).
 
     Returns
     -------
@@ -970,6 +970,6 @@ def reported_stability(
     if orbit_fl is not None and orbit_fl.unstable:
         message = f"collocated orbit unstable ({orbit_fl.crossing()}); {message}"
     if (fl is None or fl is orbit_fl) and periodic is not None:
-        fl = reported_multipliers(model, periodic, orbit_fl)
+        fl = reported_multipliers(model, periodic, orbit_fl, num.floquet_tol)
     message += stability_note(fl if fl is not None else orbit_fl)
     return status, message, fl if fl is not None else orbit_fl

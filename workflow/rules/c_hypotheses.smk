@@ -17,6 +17,7 @@ rule c_hypotheses:
         "logs/c_hypotheses.log",
     benchmark:
         "benchmarks/c_hypotheses.tsv"
+    priority: 1  # a long job: it starts before the quick figures and tables
     conda:
         "../envs/rotbeam.yaml"
     params:

@@ -10,6 +10,7 @@ rule repro_fig7_variant:
         "logs/repro_fig7_variant/{variant}.log",
     benchmark:
         "benchmarks/repro_fig7_variant/{variant}.tsv"
+    priority: 1  # a long job: it starts before the quick figures and tables
     conda:
         "../envs/rotbeam.yaml"
     params:
@@ -47,6 +48,7 @@ rule repro_fig7:
         "logs/repro_fig7.log",
     benchmark:
         "benchmarks/repro_fig7.tsv"
+    priority: 1  # a long job: it starts before the quick figures and tables
     conda:
         "../envs/rotbeam.yaml"
     params:

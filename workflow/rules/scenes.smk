@@ -21,6 +21,7 @@ rule user_scenes:
         "logs/user_scenes.log",
     benchmark:
         "benchmarks/user_scenes.tsv"
+    priority: 1  # a long job: it starts before the quick figures and tables
     conda:
         "../envs/rotbeam.yaml"
     params:

@@ -85,6 +85,7 @@ rule scene_series:
         "logs/scene_series/{name}.log",
     benchmark:
         "benchmarks/scene_series/{name}.tsv"
+    priority: 1  # a long job: it starts before the quick figures and tables
     conda:
         "../envs/rotbeam.yaml"
     params:

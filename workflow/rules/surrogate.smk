@@ -64,6 +64,7 @@ rule surrogate_vs_full:
         "logs/surrogate_vs_full.log",
     benchmark:
         "benchmarks/surrogate_vs_full.tsv"
+    priority: 1  # a long job: it starts before the quick figures and tables
     conda:
         "../envs/rotbeam.yaml"
     params:
