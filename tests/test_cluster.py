@@ -15,6 +15,7 @@ from conftest import QUICK, copy_workflow, snakemake
 
 pytest.importorskip("snakemake_executor_plugin_cluster_generic")
 
+#: two jobs: Fig. 3's line (sweep_line) and the boundary lines (sweep_boundary_lines)
 LINES = ["results/sims/ref/fig3.csv", "results/sims/ref/cmax100.csv"]
 SUBMIT = """#!/usr/bin/env bash
 # stand-in batch system: run the job script in the background, print its job id

@@ -35,7 +35,8 @@ BOUNDARY_RULES = {
     "repro_fn_zeta",
     "reproduction",
 }
-SIMULATIONS = {"sweep_line", "sweep_grid_column", "sweep_convergence", "scene_series", "shapes"}
+SIMULATIONS = {"sweep_line", "sweep_boundary_lines", "sweep_grid_column", "sweep_convergence",
+               "scene_series", "shapes"}  # fmt: skip
 
 
 def plan(work: Path) -> tuple[set[str], set[str], list[str]]:

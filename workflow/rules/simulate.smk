@@ -1,5 +1,6 @@
-# The expensive jobs, keyed by their parameters: one per sweep line of the reference beam, per
-# (E, L) column of the Fig. 7 grid and per kept scene, and one for the Fig. B.8 lines.
+# The expensive jobs, keyed by their parameters: one per sweep line of Figs. 3 and 4, per (E, L)
+# column of the Fig. 7 grid and per kept scene, one for the reference beam's boundary lines and
+# one for the Fig. B.8 lines.
 
 
 rule sweep_line:
@@ -11,6 +12,7 @@ rule sweep_line:
         "benchmarks/sweep_line/{beam}/{line}.tsv"
     wildcard_constraints:
         beam=REF,  # the Fig. 7 grid beams run all their lines in one job (sweep_grid_column)
+        line="(?!cmax)[A-Za-z0-9_.+-]+",  # the boundary lines: sweep_boundary_lines
     priority: 1  # long jobs first: the quick figures and tables fill the cores at the end
     conda:
         "../envs/rotbeam.yaml"
@@ -21,6 +23,29 @@ rule sweep_line:
         effects=config["effects"],
     script:
         "../scripts/sweep_line.py"
+
+
+# The reference beam's boundary lines (one per C_max of config boundary) in one job: each is
+# 0.6-1 s of work, about a job's start-up (0.4-0.5 s) and its imports.  A change of the boundary
+# config, the beam, numerics or effects reruns all of them (about 6 s of work for the full
+# config).
+rule sweep_boundary_lines:
+    output:
+        boundary_line_files(REF),
+    log:
+        "logs/sweep_boundary_lines.log",
+    benchmark:
+        "benchmarks/sweep_boundary_lines.tsv"
+    priority: 1  # long jobs first: the quick figures and tables fill the cores at the end
+    conda:
+        "../envs/rotbeam.yaml"
+    params:
+        code=code_version("sweep_boundary_lines"),
+        lines={Path(f).stem: LINES[(REF, Path(f).stem)] for f in boundary_line_files(REF)},
+        numerics=config["numerics"],
+        effects=config["effects"],
+    script:
+        "../scripts/sweep_boundary_lines.py"
 
 
 # One job per (E, L) column of the Fig. 7 grid: its beams (one per h/L), each 3-4 boundary lines
