@@ -481,6 +481,7 @@ SCENE_BAD = {
     ("drive", "f_d"): POSITIVE_BAD,
     ("numerics", "N"): [2, 0, -3, 2001, 6.5, NAN, "abc", None, True],
     **{("numerics", k): [0.0, -1.0, 1.0, *NUMBER_BAD] for k in ("rtol", "ss_tol", "tail_tol")},
+    ("numerics", "floquet_tol"): [0.0, -1.0, 1e-10, 2.0, *NUMBER_BAD],
     **{("numerics", k): POSITIVE_BAD for k in ("max_seconds", "max_tau")},
     **{("numerics", k): [0, 1.5, "abc", None, True] for k in ("rms_periods", "max_periods")},
     ("numerics", "samples_per_period"): [4, 8.5, "abc", None, True],
