@@ -21,6 +21,7 @@ from ..model.elastica import DiscreteElastica
 from ..model.grid import Grid
 from ..model.params import Dimensionless
 from ..solve.extrapolation import richardson
+from ..solve.floquet import VERDICT_ONLY
 from ..solve.numerics import Numerics
 from ..solve.periodic import solve_periodic
 from ..solve.quasistatic import quasistatic_series
@@ -107,14 +108,18 @@ def continuum_quasistatic_theta(
     list of (Grid, numpy.ndarray)
         [(grid N/2, Theta), (grid N, Theta)], each Theta of shape (n, m).
     """
-    return [_quasistatic_on_grid(dl, n, tuple(np.asarray(taus, float))) for n in (N // 2, N)]
+    return [_quasistatic_on_grid(dl, n, taus) for n in (N // 2, N)]
 
 
-@functools.lru_cache(maxsize=256)
-def _quasistatic_on_grid(dl: Dimensionless, N: int, taus: tuple) -> tuple[Grid, np.ndarray]:
+def _quasistatic_on_grid(dl: Dimensionless, N: int, taus: np.ndarray) -> tuple[Grid, np.ndarray]:
     """(grid, Theta (n, m), read-only) of the quasi-static series on grid N: solved once a
     process for every hypothesis that reads the same scene (they differ in the measure, the
     scale or the dynamic side)."""
+    return _cached_quasistatic(dl, N, tuple(np.asarray(taus, float)))
+
+
+@functools.lru_cache(maxsize=256)
+def _cached_quasistatic(dl: Dimensionless, N: int, taus: tuple) -> tuple[Grid, np.ndarray]:
     model = DiscreteElastica(dl, N)
     theta = quasistatic_series(model, np.array(taus))
     theta.setflags(write=False)
@@ -145,7 +150,7 @@ def hypothesis_quasistatic_midspan(
         y_m at `taus`, in units of L (dimensionless).
     """
     if h.qs == "discrete":
-        grid, th = _quasistatic_on_grid(dl, N, tuple(np.asarray(taus, float)))
+        grid, th = _quasistatic_on_grid(dl, N, taus)
         return midspan_measure(grid, th, 0.5, h.measure, dl, taus)
     (g1, t1), (g2, t2) = continuum_quasistatic_theta(dl, taus)
     y1 = midspan_measure(g1, t1, 0.5, h.measure, dl, taus)
@@ -181,10 +186,9 @@ def dynamic_model(h: Any, dl: Dimensionless, N: int) -> DiscreteModel:
 
 def _ours_orbit(model: DiscreteModel, m: int, state: dict, guess=None):
     """Our collocated orbit (steady_state without time stepping), continued along the scan;
-    the study reads its RMS, not its multipliers (floquet_tol = 1: as resolved as the stability
-    verdict needs)."""
+    the study reads its RMS, not its multipliers (VERDICT_ONLY)."""
     num = Numerics(N=model.grid.N, integrate=False, samples_per_period=m, tail_tol=1e-5,
-                   floquet_tol=1.0)  # fmt: skip
+                   floquet_tol=VERDICT_ONLY)  # fmt: skip
     ss = steady_state(model, num, guess=state.get("guess") if guess is None else guess)
     if not ss.converged:
         raise RuntimeError(f"no periodic orbit: {ss.message}")

@@ -549,7 +549,7 @@ def run_convergence_lines(
     A line is 0.02-1.4 s of work, less than a job's start-up.  Each line studies the raw grid:
     the config's numerics with the line's N and no Richardson extrapolation.  The study is of
     the RMS, so an orbit's |mu|max is resolved as far as its stability verdict needs
-    (floquet_tol = 1): at N = 80 the resolution to 1e-5 costs 2.4 s of the study's 4.3 s.
+    (floquet_tol = VERDICT_ONLY): at N = 80 the resolution to 1e-5 costs 2.4 s of the study's 4.3 s.
 
     Parameters
     ----------
@@ -570,6 +570,7 @@ def run_convergence_lines(
     import pandas as pd
 
     from ..runs.sweeps import numerics_from_config
+    from ..solve.floquet import VERDICT_ONLY
 
     frames = []
     for lid, spec in lines.items():
@@ -577,7 +578,7 @@ def run_convergence_lines(
         if log:
             log(f"line {lid}: {len(f_ds)} points")
         num = numerics_from_config(
-            {**numerics, "N": spec["N"], "extrapolate": False, "floquet_tol": 1.0}
+            {**numerics, "N": spec["N"], "extrapolate": False, "floquet_tol": VERDICT_ONLY}
         )
         frames.append(run_line(spec, f_ds, effects, num, log))
     return pd.concat(frames, ignore_index=True)

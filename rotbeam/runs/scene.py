@@ -34,6 +34,7 @@ from ..model.params import (
     drive_groups,
 )
 from ..solve.extrapolation import richardson
+from ..solve.floquet import VERDICT_ONLY
 from ..solve.numerics import Numerics
 from ..solve.periodic import Neighbour
 from ..solve.quasistatic import quasistatic_series
@@ -469,9 +470,8 @@ def simulate(
     coarse_guess = None
     if guess is not None and num.N % 2 == 0:  # the coarse grid's nodes are every second one
         coarse_guess = guess.coarse() if isinstance(guess, Neighbour) else guess[:, 1::2]
-    # the coarse grid's multipliers are not reported: they stay as resolved as its stability
-    # verdict and certificate needed (floquet_tol = 1; docs/stability.md)
-    coarse_num = replace(num, N=Nc, extrapolate=False, floquet_tol=1.0)
+    # the coarse grid's multipliers are not reported (docs/stability.md)
+    coarse_num = replace(num, N=Nc, extrapolate=False, floquet_tol=VERDICT_ONLY)
     coarse = _simulate_grid(
         Scene(scene.beam, scene.drive, scene.effects, coarse_num),
         None,

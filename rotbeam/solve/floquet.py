@@ -47,6 +47,10 @@ SPREAD_TOL = default("numerics", "floquet_tol")
 OFFSET_RTOL = 1e-2
 OFFSET_ATOL = 1e-8
 
+#: numerics.floquet_tol of an orbit whose multipliers no result reports: |mu|max stays as
+#: resolved as its stability verdict and certificate needed (a spread of 1 always stands)
+VERDICT_ONLY = 1.0
+
 
 @dataclass
 class FloquetResult:

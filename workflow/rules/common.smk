@@ -112,12 +112,17 @@ def line_spec(wildcards):
     return LINES[(wildcards.beam, wildcards.line)]
 
 
-def boundary_line_files(beam):
-    return sorted(
-        f"results/sims/{b}/{line}.csv"
-        for (b, line) in LINES
+def boundary_lines(beam):
+    """{line id: spec} of a beam's boundary lines (one per C_max), in id order."""
+    return {
+        line: LINES[(b, line)]
+        for (b, line) in sorted(LINES)
         if b == beam and line.startswith("cmax")
-    )
+    }
+
+
+def boundary_line_files(beam):
+    return [f"results/sims/{beam}/{line}.csv" for line in boundary_lines(beam)]
 
 
 def figure(stem):

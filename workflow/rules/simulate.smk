@@ -41,7 +41,7 @@ rule sweep_boundary_lines:
         "../envs/rotbeam.yaml"
     params:
         code=code_version("sweep_boundary_lines"),
-        lines={Path(f).stem: LINES[(REF, Path(f).stem)] for f in boundary_line_files(REF)},
+        lines=boundary_lines(REF),
         numerics=config["numerics"],
         effects=config["effects"],
     script:
