@@ -520,6 +520,19 @@ def test_invalid_scenes_name_key_and_value(case):
     assert any(v in line for v in value_shown(value)), line
 
 
+@pytest.mark.parametrize("value", [0.0, 1e-10, 2.0])
+def test_floquet_tol_outside_its_range_is_one_line(tmp_path, value):
+    """numerics.floquet_tol in [1e-9, 1], from a scene file and from --floquet-tol (the
+    property test above draws it among every key, not always outside its range)."""
+    path = tmp_path / "scene.yaml"
+    path.write_text(yaml.safe_dump({"drive": {"omega0": 5.0, "f_d": 2.0},
+                                    "numerics": {"floquet_tol": value}}))  # fmt: skip
+    for argv in (["simulate", "--scene", str(path)], [*SIM, "--floquet-tol", repr(value)]):
+        rc, _, err = run_main(argv)
+        line = one_clear_line(rc, err, ["numerics.floquet_tol", "[1e-09, 1]"])
+        assert repr(value) in line, line
+
+
 FLAGS = {  # flag: (scene key, valid values, bad values)
     "--omega0": ("drive.omega0", st.floats(-15.0, 20.0), ["nan", "inf", "x", "", "1e300"]),
     "--fd": ("drive.f_d", st.floats(0.3, 5.0), ["-1", "0", "nan", "-inf", "x", "1e300"]),
