@@ -106,7 +106,7 @@ def fig3_resonance(
     if measured is not None:
         _draw_measured(a, measured.f_d, measured)
     a.set_xlabel("$f_d$ [Hz]")
-    a.set_ylabel("RMS($y_m$)")
+    a.set_ylabel("RMS($y_m$) / L")
     a.set_title(rf"$\Omega_0$ = {line['omega0'].iloc[0]:g} rad/s")
     a.legend()
     b.plot(series["tau"] - series["tau"].iloc[0], series["y_m_dynamic"], color=DYN, label="dyn.")
@@ -172,7 +172,7 @@ def fig4_compare(
         a, b = axes[0, j], axes[1, j]
         a.plot(x, line["rms_dynamic"], "o-", color=DYN, mfc="none", label="dynamical")
         a.plot(x, line["rms_quasistatic"], "*--", color=QS, label="quasi-static")
-        a.set_ylabel("RMS($y_m$)")
+        a.set_ylabel("RMS($y_m$) / L")
         a.set_title(rf"$\Omega_0$ = {w0:g} rad/s")
         b.semilogy(x, line["delta_rms"], "o-", color=DYN, mfc="none")
         b.axhline(threshold, color="k", lw=0.8)

@@ -137,7 +137,7 @@ def _line_panels(a, d, line: pd.DataFrame, cur: pd.DataFrame, table: pd.DataFram
     a.plot(cur["f_d"] / fn, cur["rms_dynamic"], "-", color=DYN, label="surrogate: dynamical")
     a.plot(cur["f_d"] / fn, cur["rms_quasistatic"], "--", color=QS,
            label="surrogate: quasi-static")  # fmt: skip
-    a.set_ylabel("RMS($y_m$)")
+    a.set_ylabel("RMS($y_m$) / L")
     a.set_title(rf"$\Omega_0$ = {w0:g} rad/s")
     d.semilogy(line["f_d"] / fn, line["delta_rms"], "o", color=DYN, mfc="none", label="full")
     d.semilogy(cur["f_d"] / fn, cur["delta_rms"], "-", color=DYN, label="surrogate")

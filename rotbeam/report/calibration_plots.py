@@ -91,7 +91,7 @@ def plot_identification(curve: ResonanceCurve, fit: Identification, fitted: pd.D
     a.plot(fitted["f_d"], fitted["rms_dynamic"], "-", color=DYN, label=f"fit: {text}")
     a.plot(reference["f_d"], reference["rms_dynamic"], "--", color=GREY, label=reference_label)
     a.set_xlabel("$f_d$ [Hz]")
-    a.set_ylabel("RMS($y_m$)")
+    a.set_ylabel("RMS($y_m$) / L")
     N = int(fitted["N"].iloc[0])
     a.set_title(
         f"least squares on the full model (N = {N}): {fit.evaluations} evaluations, "
