@@ -20,8 +20,9 @@ from .parameters import SECTIONS
 from .schema import show
 
 
-class _Loader(yaml.SafeLoader):
-    """SafeLoader that also reads 1e6 and 2.0e6 as floats (YAML 1.1 wants 1.0e+6)."""
+class _Loader(getattr(yaml, "CSafeLoader", yaml.SafeLoader)):
+    """SafeLoader (libyaml's where PyYAML has it: 8x faster on the workflow's schema) that also
+    reads 1e6 and 2.0e6 as floats (YAML 1.1 wants 1.0e+6)."""
 
 
 _Loader.add_implicit_resolver(

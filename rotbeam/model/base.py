@@ -15,6 +15,7 @@ from scipy.linalg import lu_factor, lu_solve
 
 from .grid import Grid
 from .params import Dimensionless, Effects
+from .rows import matvec_rows
 
 
 class DiscreteModel(ABC):
@@ -318,24 +319,24 @@ class DiscreteModel(ABC):
         M, B = self.inertia_rows(theta)
         v = self.velocity_vector(theta_t, lam)
         torque, dL = self.load_torque_rows(theta, lam, lam_dot, jacobian=True)
-        forces = -(theta @ K.T) - torque - np.einsum("mij,mj->mi", B, v)
+        forces = -(theta @ K.T) - torque - matvec_rows(B, v)
         S = self.velocity_matrix_rows(theta, B)
         if S is not B:
-            forces -= np.einsum("mij,mj->mi", S - B, theta_t**2)
+            forces -= matvec_rows(S - B, theta_t**2)
         damp = self.damping_rows(theta)
         if damp is not None:
-            forces -= self.eta * np.einsum("mij,mj->mi", damp[0], theta_t)
+            forces -= self.eta * matvec_rows(damp[0], theta_t)
         a0 = np.linalg.solve(M, forces[..., None])[..., 0]
         idx = np.arange(n)
         dr = -(K[None] + dL) + M * v[:, None, :] - B * a0[:, None, :]
-        dr[:, idx, idx] += -np.einsum("mij,mj->mi", M, v) + np.einsum("mij,mj->mi", B, a0)
+        dr[:, idx, idx] += -matvec_rows(M, v) + matvec_rows(B, a0)
         dv = 2.0 * B * theta_t[:, None, :]
         if self.effects.coriolis:
             dv = dv + 2.0 * lam[:, None, None] * B
         if damp is not None:  # d(eta Md Theta_t)/dTheta = eta (Bd diag(Theta_t) - diag(Bd Theta_t))
             Md, Bd = damp
             dr -= self.eta * (Bd * theta_t[:, None, :])
-            dr[:, idx, idx] += self.eta * np.einsum("mij,mj->mi", Bd, theta_t)
+            dr[:, idx, idx] += self.eta * matvec_rows(Bd, theta_t)
             dv = dv + self.eta * Md
         X = np.linalg.solve(M, np.concatenate([dr, dv], axis=2))
         J = np.zeros((theta.shape[0], 2 * n, 2 * n))

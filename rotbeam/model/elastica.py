@@ -125,10 +125,15 @@ class DiscreteElastica(DiscreteModel):
 
     @staticmethod
     def _cos_sin_rows(theta: np.ndarray, W: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """W_ij cos(theta_i - theta_j) and W_ij sin(theta_i - theta_j) at m instants."""
+        """W_ij cos(theta_i - theta_j) and W_ij sin(theta_i - theta_j) at m instants, from the
+        angle-difference identities (outer products of cos and sin, formed in place)."""
         c, s = np.cos(theta), np.sin(theta)
-        M = c[:, :, None] * W * c[:, None, :] + s[:, :, None] * W * s[:, None, :]
-        B = s[:, :, None] * W * c[:, None, :] - c[:, :, None] * W * s[:, None, :]
+        M = c[:, :, None] * c[:, None, :]
+        M += s[:, :, None] * s[:, None, :]
+        M *= W
+        B = s[:, :, None] * c[:, None, :]
+        B -= c[:, :, None] * s[:, None, :]
+        B *= W
         return M, B
 
     def euler_load_vector(self) -> np.ndarray:

@@ -18,6 +18,7 @@ import scipy.linalg as sla
 
 from ..model.base import DiscreteModel
 from ..model.modes import linear_forced_response
+from ..model.rows import matvec_rows
 from .newton import newton
 from .spectral import fourier_diff_matrix, harmonic_tail, trig_interpolate
 
@@ -91,12 +92,12 @@ class Collocation:
         m = self.model
         V, A, Mm, Bm, v, S, damp = self._state(X)
         a = A + m.eta * V if damp is None else A
-        R = np.einsum("jik,jk->ji", Mm, a) + np.einsum("jik,jk->ji", Bm, v) + X @ m.stiffness.T
+        R = matvec_rows(Mm, a) + matvec_rows(Bm, v) + X @ m.stiffness.T
         if damp is not None:  # the damping's own mass matrix
-            R += m.eta * np.einsum("jik,jk->ji", damp[0], V)
+            R += m.eta * matvec_rows(damp[0], V)
         R += m.load_torque_rows(X, self.lam, self.lam_dot)
         if S is not Bm:  # a model whose squared rates carry another matrix than B
-            R += np.einsum("jik,jk->ji", S - Bm, V * V)
+            R += matvec_rows(S - Bm, V * V)
         return R
 
     def jacobian_blocks(self, X: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -121,8 +122,8 @@ class Collocation:
         n = m.n
         V, A, Mm, Bm, v, _, damp = self._state(X)
         a = A + m.eta * V if damp is None else A
-        Ba = np.einsum("jik,jk->ji", Bm, a)
-        Mv = np.einsum("jik,jk->ji", Mm, v)
+        Ba = matvec_rows(Bm, a)
+        Mv = matvec_rows(Mm, v)
         dv = 2.0 * V
         if m.effects.coriolis:
             dv = dv + 2.0 * self.lam[:, None]
@@ -134,7 +135,7 @@ class Collocation:
         if damp is not None:  # d(eta Md V)/dTheta = eta (Bd diag(V) - diag(Bd V))
             Bd = damp[1]
             Lj += m.eta * (Bd * V[:, None, :])
-            Lj[:, idx, idx] -= m.eta * np.einsum("jik,jk->ji", Bd, V)
+            Lj[:, idx, idx] -= m.eta * matvec_rows(Bd, V)
         return Lj, Cj, Mm
 
     def dense_jacobian(self, blocks: tuple[np.ndarray, np.ndarray, np.ndarray]) -> np.ndarray:
@@ -176,11 +177,7 @@ class Collocation:
             J Y, shape (M, n).
         """
         Lj, Cj, Mm = blocks
-        return (
-            np.einsum("jik,jk->ji", Lj, Y)
-            + np.einsum("jik,jk->ji", Cj, self.D @ Y)
-            + np.einsum("jik,jk->ji", Mm, self.D2 @ Y)
-        )
+        return matvec_rows(Lj, Y) + matvec_rows(Cj, self.D @ Y) + matvec_rows(Mm, self.D2 @ Y)
 
     def averaged_inverse(self, blocks: tuple[np.ndarray, np.ndarray, np.ndarray]):
         """Solver of the time-averaged (block-circulant) Jacobian, diagonal in Fourier space.
@@ -207,7 +204,7 @@ class Collocation:
 
         def solve(R: np.ndarray) -> np.ndarray:
             F = np.fft.rfft(R, axis=0)
-            return np.fft.irfft(np.einsum("kij,kj->ki", inv, F), n=M, axis=0)
+            return np.fft.irfft(matvec_rows(inv, F), n=M, axis=0)
 
         return solve
 

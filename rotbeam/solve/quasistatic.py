@@ -8,6 +8,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..model.base import DiscreteModel
+from ..model.rows import matvec_rows
 from .newton import newton
 
 
@@ -213,7 +214,7 @@ def batched_static(
                 return None
         else:
             r = model.static_rows(theta, lam, lam_dot)
-        step = -np.einsum("jik,jk->ji", inverse, r)
+        step = -matvec_rows(inverse, r)
         theta = theta + step
         if not np.all(np.isfinite(theta)):
             return None
