@@ -1,7 +1,8 @@
 """What a command or a workflow job loads: only what it uses.  `rotbeam simulate` without
 --plot or --uncertainty loads neither matplotlib (0.35 s) nor scipy.stats (0.5 s), numba (0.6 s,
 and its compiled kernels) loads only with a time-stepped classification, and a workflow script
-that draws nothing does not load matplotlib; each check runs in a fresh Python and has a
+that draws nothing does not load matplotlib, nor one that only simulates pandas (0.2 s of each
+job's start-up); each check runs in a fresh Python and has a
 positive control that loads the module, so that it can fail."""
 
 from __future__ import annotations
@@ -19,10 +20,10 @@ ROOT = Path(__file__).resolve().parents[1]
 HEAVY = ("matplotlib", "scipy.stats", "numba")
 
 
-def loaded_after(code: str) -> list[str]:
-    """Which of HEAVY a fresh Python has in sys.modules after running `code`."""
+def loaded_after(code: str, heavy: tuple[str, ...] = HEAVY) -> list[str]:
+    """Which of `heavy` a fresh Python has in sys.modules after running `code`."""
     probe = (
-        f"{code}\nimport json, sys\nprint(json.dumps([m for m in {HEAVY!r} if m in sys.modules]))"
+        f"{code}\nimport json, sys\nprint(json.dumps([m for m in {heavy!r} if m in sys.modules]))"
     )
     p = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True, cwd=ROOT,
                        timeout=300)  # fmt: skip
@@ -97,3 +98,35 @@ def test_the_script_check_sees_a_drawing_script():
     drawing = sorted(s for s, draws in RULES.items() if draws)
     assert "fig3" in drawing and len(drawing) >= 10
     assert "matplotlib" in loaded_after(imports_of(ROOT / "workflow" / "scripts" / "fig3.py"))
+
+
+#: the workflow's simulation scripts: they run sweeps and write records (`write_records`)
+SIMULATING = ("sweep_line", "sweep_boundary_lines", "sweep_grid_column", "sweep_convergence",
+              "repro_fig7_variant", "scene_series")  # fmt: skip
+
+#: one short line, as the sweep scripts run them (a record per point), then written
+LINE = """
+from rotbeam.model.params import Effects
+from rotbeam.paper.studies import line_columns, run_line
+from rotbeam.report.io import write_records
+from rotbeam.solve.numerics import Numerics
+spec = {"beam": {}, "omega0": 5.0, "amplitude": 1.0, "c_max": 1.0}
+rows = run_line(spec, [1.0, 2.0], Effects(), Numerics(N=6))
+write_records(rows, line_columns(True), PATH)
+"""
+
+
+@pytest.mark.parametrize("stem", SIMULATING)
+def test_workflow_script_that_simulates_loads_no_pandas(stem):
+    code = imports_of(ROOT / "workflow" / "scripts" / f"{stem}.py")
+    assert loaded_after(code, ("pandas",)) == []
+
+
+def test_a_sweep_line_runs_and_is_written_without_pandas(tmp_path):
+    path = tmp_path / "line.csv"
+    assert loaded_after(LINE.replace("PATH", repr(str(path))), ("pandas",)) == []
+    assert path.read_text().startswith("c_max_target,omega0,f_d,")
+    assert len(path.read_text().splitlines()) == 3
+    # the control: the table of the same line loads it
+    table = "from rotbeam.runs.sweeps import scan_line\nfrom rotbeam.model.params import Beam\n"
+    assert loaded_after(table + "scan_line(Beam(), 5.0, [1.0])", ("pandas",)) == ["pandas"]

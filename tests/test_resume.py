@@ -22,8 +22,8 @@ from conftest import QUICK, copy_workflow, job_counts, snakemake, snakemake_env
 import rotbeam.runs.sweeps
 from rotbeam.analysis.boundary import boundary_table, c_per_threshold, fit_c
 from rotbeam.model.params import Beam
-from rotbeam.report.io import atomic_write, write_csv
-from rotbeam.runs.sweeps import COLUMNS, scan_line
+from rotbeam.report.io import atomic_write, write_csv, write_records
+from rotbeam.runs.sweeps import COLUMNS, line_sweep
 from rotbeam.solve.numerics import Numerics
 from rotbeam.solve.timebudget import TimeBudget
 
@@ -47,7 +47,8 @@ def test_failed_sweep_points_are_rows_with_their_reason(monkeypatch, tmp_path):
 
     monkeypatch.setattr(rotbeam.runs.sweeps, "simulate", flaky)
     log = []
-    df = scan_line(Beam(), 5.0, [1.0, 2.0, 3.0, 4.0], numerics=Numerics(N=6), log=log.append)
+    line = line_sweep(Beam(), 5.0, [1.0, 2.0, 3.0, 4.0], numerics=Numerics(N=6), log=log.append)
+    df = line.rows
     assert list(df["f_d"]) == [1.0, 2.0, 3.0, 4.0] and list(df.columns) == COLUMNS
     ok = df.set_index("f_d")
     assert ok.loc[2.0, "status"] == -2 and not ok.loc[2.0, "converged"]
@@ -58,8 +59,12 @@ def test_failed_sweep_points_are_rows_with_their_reason(monkeypatch, tmp_path):
     assert ok.loc[1.0, "converged"] and ok.loc[4.0, "converged"]  # the line went on
     assert "FAILED: LinAlgError" in log[1] and len(log) == 4
 
-    # the failure survives the CSV and is counted downstream
+    # the failure survives the CSV and is counted downstream; the workflow's jobs write the
+    # records without pandas, the same file as the table's writer (NaN, None and the messages'
+    # commas included)
     write_csv(df, tmp_path / "line.csv")
+    write_records(line.records, COLUMNS, tmp_path / "records.csv")
+    assert (tmp_path / "records.csv").read_text() == (tmp_path / "line.csv").read_text()
     back = pd.read_csv(tmp_path / "line.csv")
     assert "singular Jacobian" in back.loc[1, "message"]
     table = boundary_table([back], [0.1], REF_BEAM)
@@ -122,13 +127,23 @@ def stall(target):
 if kind == "csv":
     pd.DataFrame.to_csv = lambda self, target, **kw: stall(target)
     io.write_csv(pd.DataFrame({"a": [1], "b": [2]}), path)
+elif kind == "records":
+    class Stalled:
+        def __init__(self, f):
+            self.name = f.name
+        def writerow(self, row):
+            stall(self.name)
+    io.csv.writer = lambda f, **kw: Stalled(f)
+    io.write_records([{"a": 1, "b": 2}], ["a", "b"], path)
 else:
     pathlib.Path.write_text = lambda self, text, *a, **kw: stall(self)
     io.write_json({"c": 0.3}, path)
 """
 
 
-@pytest.mark.parametrize("kind, name", [("csv", "line.csv"), ("json", "fit.json")])
+@pytest.mark.parametrize(
+    "kind, name", [("csv", "line.csv"), ("records", "lines.csv"), ("json", "fit.json")]
+)
 @pytest.mark.parametrize("existing", [False, True])
 def test_killed_writer_leaves_no_file_at_the_final_path(tmp_path, kind, name, existing):
     target = tmp_path / "out" / name

@@ -214,7 +214,8 @@ def run_grid_lines(
     Returns
     -------
     dict
-        {beam id: its lines' DataFrames (`run_line`), column ``c_max_target`` naming the line}.
+        {beam id: the records of its lines, one after the other (`run_line`), key
+        ``c_max_target`` naming the line}.
     """
     out = {}
     for bid, beam in beams.items():
@@ -223,7 +224,7 @@ def run_grid_lines(
         for lid, ls in lines.items():
             if log:
                 log(f"{bid} {lid}")
-            out[bid].append(run_line(ls, scan_frequencies(ls), effects, numerics, log))
+            out[bid] += run_line(ls, scan_frequencies(ls), effects, numerics, log)
     return out
 
 
@@ -247,16 +248,38 @@ def run_line(spec: dict[str, Any], f_ds: list[float], effects: Effects, numerics
 
     Returns
     -------
-    pandas.DataFrame
-        A row per point, with ``c_max_target`` first when the line belongs to a C_max.
+    list of dict
+        A record per point (`rotbeam.runs.sweeps.COLUMNS`), with ``c_max_target`` when the
+        line belongs to a C_max (`line_columns`).
     """
-    from ..runs.sweeps import scan_line
+    from ..runs.sweeps import line_sweep
 
-    df = scan_line(Beam(**spec["beam"]), spec["omega0"], f_ds, amplitude=spec["amplitude"],
-                   effects=effects, numerics=numerics, log=log)  # fmt: skip
+    line = line_sweep(Beam(**spec["beam"]), spec["omega0"], f_ds, amplitude=spec["amplitude"],
+                      effects=effects, numerics=numerics, log=log)  # fmt: skip
     if "c_max" in spec:
-        df.insert(0, "c_max_target", spec["c_max"])
-    return df
+        return [{"c_max_target": spec["c_max"], **row} for row in line.records]
+    return line.records
+
+
+def line_columns(boundary: bool, *extra: str) -> list[str]:
+    """The columns of a file of `run_line` records: ``c_max_target`` first on a boundary line,
+    then `rotbeam.runs.sweeps.COLUMNS`, then `extra`.
+
+    Parameters
+    ----------
+    boundary : bool
+        Whether the lines belong to a C_max.
+    *extra : str
+        Columns the caller adds (e.g. the beam id).
+
+    Returns
+    -------
+    list of str
+        The header.
+    """
+    from ..runs.sweeps import COLUMNS
+
+    return (["c_max_target"] if boundary else []) + list(COLUMNS) + list(extra)
 
 
 def grid_columns(
@@ -564,15 +587,13 @@ def run_convergence_lines(
 
     Returns
     -------
-    pandas.DataFrame
-        The lines' rows, in the order of `lines`.
+    list of dict
+        The lines' records (`run_line`), in the order of `lines`.
     """
-    import pandas as pd
-
     from ..runs.sweeps import numerics_from_config
     from ..solve.floquet import VERDICT_ONLY
 
-    frames = []
+    records = []
     for lid, spec in lines.items():
         f_ds = scan_frequencies(spec)
         if log:
@@ -580,8 +601,8 @@ def run_convergence_lines(
         num = numerics_from_config(
             {**numerics, "N": spec["N"], "extrapolate": False, "floquet_tol": VERDICT_ONLY}
         )
-        frames.append(run_line(spec, f_ds, effects, num, log))
-    return pd.concat(frames, ignore_index=True)
+        records += run_line(spec, f_ds, effects, num, log)
+    return records
 
 
 def series_from_config(config: dict[str, Any]) -> dict[str, dict[str, Any]]:

@@ -71,11 +71,17 @@ class Sweep:
     """A line of drive frequencies run by `sweep`: a row per point run, and where the time
     budget cut it."""
 
-    rows: pandas.DataFrame  #: one row per point run, the columns `COLUMNS`
+    records: list[dict]  #: one dict per point run, keyed by `COLUMNS`
     points: int  #: the points asked for
     seconds: float  #: wall time of the whole line [s]
     cut_at: int | None = None  #: 0-based index of the first point not run (budget), else None
     message: str = ""  #: why the line stops short ('' when every point ran)
+
+    @property
+    def rows(self) -> pandas.DataFrame:
+        """The points as a table, a row per point run, the columns `COLUMNS` (pandas loads
+        here, not before: a job that writes the records skips it)."""
+        return _frame(self.records)
 
     @property
     def complete(self) -> bool:
@@ -143,12 +149,11 @@ def sweep(
         if progress is not None:
             progress(k, row)
     seconds = budget.elapsed()
-    frame = _frame(rows)
     if cut is None:
-        return Sweep(frame, len(f_ds), seconds)
+        return Sweep(rows, len(f_ds), seconds)
     where = f"the line at point {cut + 1} of {len(f_ds)} (f_d = {float(f_ds[cut]):.6g} Hz)"
     message = f"{budget.cut(where)}: {cut} points ran"
-    return Sweep(frame, len(f_ds), seconds, cut, message)
+    return Sweep(rows, len(f_ds), seconds, cut, message)
 
 
 def _run_point(
@@ -207,8 +212,8 @@ def scan_line(
     numerics: Numerics | None = None,
     log: Callable[[str], None] | None = None,
 ) -> pandas.DataFrame:
-    """Dynamic and quasi-static RMS at each drive frequency of one line of the sine drive
-    (`sweep`, the same code as `rotbeam sweep`).
+    """Dynamic and quasi-static RMS at each drive frequency of one line of the sine drive, as a
+    table (`line_sweep`'s rows).
 
     Parameters
     ----------
@@ -238,6 +243,49 @@ def scan_line(
     RotbeamInputError
         For input the scene rejects.
     """
+    return line_sweep(beam, omega0, f_ds, amplitude, effects, numerics, log).rows
+
+
+def line_sweep(
+    beam: Beam,
+    omega0: float,
+    f_ds: Sequence[float],
+    amplitude: float = 1.0,
+    effects: Effects | None = None,
+    numerics: Numerics | None = None,
+    log: Callable[[str], None] | None = None,
+) -> Sweep:
+    """Dynamic and quasi-static RMS at each drive frequency of one line of the sine drive
+    (`sweep`, the same code as `rotbeam sweep`), with a log line per point.
+
+    Parameters
+    ----------
+    beam : Beam
+        The beam (SI units).
+    omega0 : float
+        Mean angular velocity Omega_0 [rad/s].
+    f_ds : sequence of float
+        Drive frequencies [Hz], in the order run.
+    amplitude : float
+        Drive amplitude a [rad/s].
+    effects : Effects or None
+        Effects of the model; None: the defaults.
+    numerics : Numerics or None
+        Numerical settings; None: the defaults.  max_seconds is the budget of the whole line.
+    log : callable or None
+        log(line) after every point, and once more when the budget cut the line.
+
+    Returns
+    -------
+    Sweep
+        A record per frequency run, keyed by `COLUMNS` (RMS of y_m / L, Delta RMS, status,
+        message, |mu|max, seconds, ...), and where the budget cut the line.
+
+    Raises
+    ------
+    RotbeamInputError
+        For input the scene rejects.
+    """
     drive = Drive(omega0=omega0, amplitude=amplitude, f_d=float(f_ds[0]) if len(f_ds) else 1.0)
     scene = Scene(beam, drive, effects or Effects(), numerics or Numerics())
     t_line = time.perf_counter()
@@ -254,7 +302,7 @@ def scan_line(
     line = sweep(scene, f_ds, point)
     if line.message and log is not None:
         log(line.message)
-    return line.rows
+    return line
 
 
 def numerics_from_config(cfg: dict | None) -> Numerics:

@@ -2,11 +2,9 @@
 
 # ruff: noqa: F821
 # (`snakemake` is injected by Snakemake)
-import pandas as pd
-
 from rotbeam.model.params import Effects
-from rotbeam.paper.studies import run_grid_lines
-from rotbeam.report.io import write_csv
+from rotbeam.paper.studies import line_columns, run_grid_lines
+from rotbeam.report.io import write_records
 from rotbeam.report.joblog import job_log
 from rotbeam.runs.sweeps import numerics_from_config
 
@@ -19,5 +17,5 @@ with job_log(snakemake.log[0], snakemake.input, snakemake.output, snakemake.rule
         numerics_from_config(snakemake.params.numerics),
         log=log.info,  # one line per point, in the job's log
     )
-    frames = [df.assign(beam=bid) for bid, dfs in lines.items() for df in dfs]
-    write_csv(pd.concat(frames, ignore_index=True), snakemake.output[0])
+    rows = [{**row, "beam": bid} for bid, records in lines.items() for row in records]
+    write_records(rows, line_columns(True, "beam"), snakemake.output[0])

@@ -4,10 +4,8 @@
 
 from dataclasses import replace
 
-import pandas as pd
-
 from rotbeam.model.params import Beam, Drive, Effects
-from rotbeam.report.io import write_csv
+from rotbeam.report.io import write_records
 from rotbeam.report.joblog import job_log
 from rotbeam.runs.scene import Scene, simulate
 from rotbeam.runs.sweeps import numerics_from_config
@@ -29,8 +27,12 @@ with job_log(snakemake.log[0], snakemake.input, snakemake.output, snakemake.rule
     keys = ("rms_dynamic", "rms_quasistatic", "delta_rms", "converged", "message", "C_max",
             "E_max", "seconds")  # fmt: skip
     log.info("scene %s: %s", snakemake.wildcards.name, {k: s[k] for k in keys})
-    df = pd.DataFrame(res.time_series())
-    for key in ("rms_dynamic", "rms_quasistatic", "delta_rms", "C_max", "E_max", "f_d", "omega0",
-                "f_n_hz", "converged"):  # fmt: skip
-        df[key] = s[key]
-    write_csv(df, snakemake.output[0])
+    series = res.time_series()  # column -> samples; the scene's numbers repeat on every row
+    kept = ("rms_dynamic", "rms_quasistatic", "delta_rms", "C_max", "E_max", "f_d", "omega0",
+            "f_n_hz", "converged")  # fmt: skip
+    scalars = {key: s[key] for key in kept}
+    rows = (
+        {**dict(zip(series, values, strict=True)), **scalars}
+        for values in zip(*series.values(), strict=True)
+    )
+    write_records(rows, [*series, *scalars], snakemake.output[0])

@@ -6,8 +6,8 @@
 from pathlib import Path
 
 from rotbeam.model.params import Effects
-from rotbeam.paper.studies import run_line, scan_frequencies
-from rotbeam.report.io import write_csv
+from rotbeam.paper.studies import line_columns, run_line, scan_frequencies
+from rotbeam.report.io import write_records
 from rotbeam.report.joblog import job_log
 from rotbeam.runs.sweeps import numerics_from_config
 
@@ -21,7 +21,7 @@ with job_log(snakemake.log[0], snakemake.input, snakemake.output, snakemake.rule
     for line, spec in lines.items():
         f_ds = scan_frequencies(spec)
         log.info(f"line {line}: {len(f_ds)} points")
-        df = run_line(spec, f_ds, effects, numerics, log=log.info)
-        failed = int((~df["converged"].astype(bool)).sum())
-        log.info(f"{line}: {len(df) - failed} converged, {failed} failed or unverified")
-        write_csv(df, out[line])
+        rows = run_line(spec, f_ds, effects, numerics, log=log.info)
+        failed = sum(not row["converged"] for row in rows)
+        log.info(f"{line}: {len(rows) - failed} converged, {failed} failed or unverified")
+        write_records(rows, line_columns(True), out[line])

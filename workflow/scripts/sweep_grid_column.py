@@ -5,11 +5,9 @@ in one job: per beam its file (a row per point, `c_max_target` naming the line).
 # (`snakemake` is injected by Snakemake)
 from pathlib import Path
 
-import pandas as pd
-
 from rotbeam.model.params import Effects
-from rotbeam.paper.studies import run_grid_lines
-from rotbeam.report.io import write_csv
+from rotbeam.paper.studies import line_columns, run_grid_lines
+from rotbeam.report.io import write_records
 from rotbeam.report.joblog import job_log
 from rotbeam.runs.sweeps import numerics_from_config
 
@@ -26,8 +24,7 @@ with job_log(snakemake.log[0], snakemake.input, snakemake.output, snakemake.rule
         numerics_from_config(snakemake.params.numerics),
         log=log.info,  # one line per point, in the job's log
     )
-    for beam, frames in lines.items():
-        df = pd.concat(frames, ignore_index=True)
-        failed = int((~df["converged"].astype(bool)).sum())
-        log.info(f"{beam}: {len(frames)} lines, {len(df) - failed} points converged, {failed} not")
-        write_csv(df, out[beam])
+    for beam, rows in lines.items():
+        failed = sum(not row["converged"] for row in rows)
+        log.info(f"{beam}: {len(rows) - failed} points converged, {failed} not")
+        write_records(rows, line_columns(True), out[beam])

@@ -3,8 +3,8 @@
 # (`snakemake` is injected by Snakemake)
 
 from rotbeam.model.params import Effects
-from rotbeam.paper.studies import run_line, scan_frequencies
-from rotbeam.report.io import write_csv
+from rotbeam.paper.studies import line_columns, run_line, scan_frequencies
+from rotbeam.report.io import write_records
 from rotbeam.report.joblog import job_log
 from rotbeam.runs.sweeps import numerics_from_config
 
@@ -13,13 +13,13 @@ with job_log(snakemake.log[0], snakemake.input, snakemake.output, snakemake.rule
     spec = snakemake.params.spec
     f_ds = scan_frequencies(spec)
     say(f"line {snakemake.wildcards.line} of beam {snakemake.wildcards.beam}: {len(f_ds)} points")
-    df = run_line(
+    rows = run_line(
         spec,
         f_ds,
         Effects.from_list(snakemake.params.effects),
         numerics_from_config(snakemake.params.numerics),
         log=say,
     )
-    failed = int((~df["converged"].astype(bool)).sum())
-    say(f"done: {len(df) - failed} converged, {failed} failed or unverified")
-    write_csv(df, snakemake.output[0])
+    failed = sum(not row["converged"] for row in rows)
+    say(f"done: {len(rows) - failed} converged, {failed} failed or unverified")
+    write_records(rows, line_columns("c_max" in spec), snakemake.output[0])
