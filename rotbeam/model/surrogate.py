@@ -303,9 +303,11 @@ class SurrogateModel:
         }
 
     # --- harmonic balance -------------------------------------------------------------------
+    @functools.cached_property
     def _drive_coefficients(self) -> np.ndarray:
         """Two-sided Fourier coefficients a_{-K..K} of lam, lam = sum_k a_k exp(i k omega tau),
-        trailing harmonics below 1e-14 of the largest dropped."""
+        trailing harmonics below 1e-14 of the largest dropped (worked out once per model: every
+        harmonic-balance solve reads them twice)."""
         c = self.dl.law.coefficients(_DRIVE_K)
         keep = np.flatnonzero(np.abs(c[1:]) > 1e-14 * max(float(np.max(np.abs(c))), 1e-300))
         c = c[: (int(keep[-1]) + 2 if keep.size else 2)]
@@ -313,7 +315,7 @@ class SurrogateModel:
 
     def _forcing(self) -> tuple[np.ndarray, np.ndarray]:
         """(k >= 1, one-sided complex amplitudes of lam_dot at k omega)."""
-        a = self._drive_coefficients()
+        a = self._drive_coefficients
         K = (a.size - 1) // 2
         k = np.arange(1, K + 1)
         return k, 2.0 * (1j * k * self.dl.omega) * a[K + 1 :]
@@ -321,7 +323,7 @@ class SurrogateModel:
     def _stiffness_harmonics(self) -> np.ndarray:
         """Fourier coefficients P_{-2K..2K} of (k_b + lam^2 (k_c - sigma m_soft)) / m, K the
         drive's highest harmonic."""
-        a = self._drive_coefficients()
+        a = self._drive_coefficients
         b = (self.k_c - self.sigma * self.m_soft) / self.m
         p = b * np.convolve(a, a)
         p[p.size // 2] += self.k_b / self.m
@@ -341,7 +343,7 @@ class SurrogateModel:
         if dynamic:
             kw = k * dl.omega
             ab[u] += -kw * kw + 1j * kw * self.damping
-        a = self._drive_coefficients()
+        a = self._drive_coefficients
         Kd = (a.size - 1) // 2
         rhs = np.zeros(n, dtype=complex)
         j = np.arange(-Kd, Kd + 1)
@@ -460,8 +462,11 @@ def steady_rms(dl: Dimensionless) -> dict[str, float]:
 
 
 def _delta_at(beam: Beam, omega0: float, amplitude: float, f_d: float, effects: Effects) -> float:
-    dl = Dimensionless.from_physical(beam, Drive(omega0, amplitude, f_d), effects)
-    return steady_rms(dl)["delta_rms"]
+    """`steady_rms`'s Delta RMS alone (the scan of `critical_frequency` reads nothing else)."""
+    model = SurrogateModel.from_dimensionless(
+        Dimensionless.from_physical(beam, Drive(omega0, amplitude, f_d), effects)
+    )
+    return delta_rms(model.rms_midspan(dynamic=True), model.rms_midspan(dynamic=False))
 
 
 def critical_frequency(
