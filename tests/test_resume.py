@@ -245,7 +245,7 @@ def test_interrupted_workflow_reruns_only_unfinished_jobs(tmp_path, interrupt):
     # 300 s).  A user's `kill` can hit it too; that is snakemake's to fix, not the workflow's.
     script = work / "workflow" / "scripts" / "sweep_line.py"
     code = script.read_text()
-    anchor = "from rotbeam.report.io import write_csv\n"
+    anchor = "from rotbeam.report.joblog import job_log\n"
     assert anchor in code
     script.write_text(code.replace(anchor, f"import time\n\ntime.sleep({JOB_PAUSE})\n{anchor}", 1))
     sims = work / "results" / "sims" / "ref"
