@@ -111,11 +111,12 @@ def run(args: argparse.Namespace) -> int:
             b.set_postfix_str(f"f_d {row['f_d']:.4g} Hz, RMS {row['rms_dynamic']:.3g}")
 
         line = sweep(scene, f_ds, point)
+    table = line.rows  # made once: the file and the printed or JSON rows read the same table
     if args.out:
         from ..report.io import write_csv
 
-        write_csv(line.rows, args.out)
-    rows = line.rows.to_dict(orient="records")
+        write_csv(table, args.out)
+    rows = table.to_dict(orient="records")
     ok = line.complete and all(r["converged"] for r in rows)
     if args.json:
         show.as_json({"omega0": scene.drive.omega0, "f0_hz": _first(rows, "f0_hz"),

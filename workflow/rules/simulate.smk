@@ -26,7 +26,7 @@ rule sweep_line:
 
 
 # The reference beam's boundary lines (one per C_max of config boundary) in one job: each is
-# 0.6-1 s of work, about a job's start-up (0.4-0.5 s) and its imports.  A change of the boundary
+# 0.5-0.9 s of work, not much more than a job's start-up (0.3 s).  A change of the boundary
 # config, the beam, numerics or effects reruns all of them (about 6 s of work for the full
 # config).
 rule sweep_boundary_lines:
@@ -75,8 +75,8 @@ rule sweep_grid_column:
         "../scripts/sweep_grid_column.py"
 
 
-# The grid-convergence lines of Fig. B.8 in one job (each is 0.02-1.4 s of work, less than a
-# job's start-up): a change of the convergence config, the beam, effects or numerics other than
+# The grid-convergence lines of Fig. B.8 in one job (each is 0.01-0.6 s of work, most less than
+# a job's start-up): a change of the convergence config, the beam, effects or numerics other than
 # N and extrapolate (each line sets its own N, never extrapolated) reruns all of them (about 3 s
 # of work for the full config).  sweep_line's pattern matches this file too; snakemake takes the
 # rule whose output has no wildcards.
