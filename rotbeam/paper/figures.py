@@ -13,7 +13,18 @@ from matplotlib.ticker import NullFormatter
 
 from ..model.criterion import power_spectrum
 from ..model.params import Beam, Drive
-from ..report.style import ACCENT, DYN, GREY, QS, apply_style, figure, panel_label, plt, save
+from ..report.style import (
+    ACCENT,
+    DYN,
+    GREY,
+    QS,
+    apply_style,
+    figure,
+    legend_in_headroom,
+    panel_label,
+    plt,
+    save,
+)
 
 
 def fig1_drive(omega0: float, amplitude: float, f_d: float, pdf: str, png: str) -> None:
@@ -113,9 +124,9 @@ def fig3_resonance(
     b.plot(series["tau"] - series["tau"].iloc[0], series["y_m_quasistatic"], "--", color=QS,
            label="QS")  # fmt: skip
     b.set_xlabel(r"$\tau$ (steady state)")
-    b.set_ylabel("$y_m$")
+    b.set_ylabel("$y_m$ / L")
     b.set_title(rf"$f_d$ = {series['f_d'].iloc[0]:g} Hz")
-    b.legend()
+    legend_in_headroom(b, 0.2, ncol=2)  # the curves fill the panel's height
     T = float(series["t_s"].iloc[1] - series["t_s"].iloc[0]) / float(
         series["tau"].iloc[1] - series["tau"].iloc[0]
     )
@@ -123,7 +134,7 @@ def fig3_resonance(
     c.plot(f / T, amp, color=DYN)
     c.set_xlim(0, 5 * series["f_d"].iloc[0])
     c.set_xlabel("$f_r$ [Hz]")
-    c.set_ylabel("|FFT($y_m$)|")
+    c.set_ylabel("|FFT($y_m$)| / L")
     for ax, lab in zip(axes, "abc", strict=True):
         panel_label(ax, f"({lab})")
     save(fig, pdf, png)

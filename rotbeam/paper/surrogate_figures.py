@@ -18,7 +18,17 @@ import pandas as pd
 
 from ..model.params import Beam
 from ..model.surrogate import southwell_frequency_hz
-from ..report.style import ACCENT, DYN, GREY, QS, apply_style, figure, panel_label, save
+from ..report.style import (
+    ACCENT,
+    DYN,
+    GREY,
+    QS,
+    apply_style,
+    figure,
+    legend_in_headroom,
+    panel_label,
+    save,
+)
 
 
 def southwell_figure(table: pd.DataFrame, beam: dict, N: int, pdf: str, png: str) -> None:
@@ -155,7 +165,7 @@ def _line_panels(a, d, line: pd.DataFrame, cur: pd.DataFrame, table: pd.DataFram
                     fontsize=9)  # fmt: skip
     d.set_ylabel(r"$\Delta$RMS")
     d.set_xlabel("$f_d / f_n$")
-    a.legend(fontsize=6)
+    legend_in_headroom(a, 0.4, fontsize=6)  # the resonance peak reaches the top
     d.legend(fontsize=6)
     panel_label(a, f"({next(labels)})")
     panel_label(d, f"({next(labels)})")

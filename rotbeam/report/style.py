@@ -87,6 +87,25 @@ def save(fig: plt.Figure, pdf: str | Path, png: str | Path | None = None) -> Non
     plt.close(fig)
 
 
+def legend_in_headroom(ax: plt.Axes, headroom: float, **kwargs) -> None:
+    """A legend in a band added above the data, for a panel whose curves fill its height: the
+    y-axis is extended upward by `headroom` times its span and the legend stands in the upper
+    right of that band, over no point or curve.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The panel (a linear y-axis), drawn and with its limits set.
+    headroom : float
+        The band's height over the data's span (e.g. 0.4 for a four-line legend).
+    **kwargs
+        Passed to `matplotlib.axes.Axes.legend` (fontsize, ncol, ...).
+    """
+    lo, hi = ax.get_ylim()
+    ax.set_ylim(lo, hi + headroom * (hi - lo))
+    ax.legend(loc="upper right", **kwargs)
+
+
 def panel_label(ax: plt.Axes, text: str) -> None:
     """Write a panel's label, e.g. "(a)", in bold at the top left corner of its axes.
 
