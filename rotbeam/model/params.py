@@ -78,6 +78,78 @@ def tip_loaded_root(mu: float, j: float) -> float:
     return 0.5 * (lo + hi)
 
 
+def tip_loaded_mode(b: float, mu: float, j: float) -> tuple[float, float]:
+    """The first mode of the cantilever with a payload, as two coefficients of its closed form.
+
+    phi(s) = A (cosh bs - cos bs) + B (sinh bs - sin bs) is clamped at s = 0; (A, B) is the
+    null vector of the two tip conditions phi_ss(1) = j b^4 phi_s(1) (the payload's rotary
+    inertia balances the bending moment) and phi_sss(1) = -mu b^4 phi(1) (its mass balances the
+    shear force), whose determinant is twice the characteristic equation of `tip_loaded_root`
+    (docs/model.md, "A payload at the tip").
+
+    Parameters
+    ----------
+    b : float
+        The root, dimensionless (`tip_loaded_root(mu, j)`).
+    mu : float
+        Tip mass m_tip / (rho A L), dimensionless, >= 0.
+    j : float
+        Tip rotary inertia J_tip / (rho A L^3), dimensionless, >= 0.
+
+    Returns
+    -------
+    tuple of float
+        (A, B), of unit Euclidean norm (the sign and scale of a mode are arbitrary).
+    """
+    c, ch, s, sh = math.cos(b), math.cosh(b), math.sin(b), math.sinh(b)
+    jb3, mub = j * b**3, mu * b
+    conditions = np.array([[ch + c - jb3 * (sh + s), sh + s - jb3 * (ch - c)],
+                           [sh - s + mub * (ch - c), ch + c + mub * (sh - s)]])  # fmt: skip
+    null = np.linalg.svd(conditions)[2][-1]  # the right singular vector of the zero singular value
+    return float(null[0]), float(null[1])
+
+
+#: Gauss-Legendre nodes and weights on [-1, 1] for the mode's integral (exact to round-off)
+_GAUSS_NODES, _GAUSS_WEIGHTS = np.polynomial.legendre.leggauss(32)
+
+
+def damped_mass_share(mu: float, j: float) -> float:
+    """The share of the first mode's modal mass that the beam's damping acts on.
+
+    s = int_0^1 phi^2 ds / (int_0^1 phi^2 ds + mu phi(1)^2 + j phi_s(1)^2), with phi the first
+    mode of the cantilever with the payload (`tip_loaded_mode`): the viscous damping acts per
+    unit length of the beam and not on the payload, so the first mode's damping ratio is
+    eta s / (2 b^2) (`Beam.zeta`; the derivation is in docs/model.md, "A payload at the tip").
+
+    Parameters
+    ----------
+    mu : float
+        Tip mass m_tip / (rho A L), dimensionless, >= 0.
+    j : float
+        Tip rotary inertia J_tip / (rho A L^3), dimensionless, >= 0.
+
+    Returns
+    -------
+    float
+        s, dimensionless, in (0, 1]; 1 without a payload.
+
+    Raises
+    ------
+    RotbeamInputError
+        If `tip_loaded_root` finds no first mode.
+    """
+    if mu == 0.0 and j == 0.0:
+        return 1.0
+    b = tip_loaded_root(mu, j)
+    A, B = tip_loaded_mode(b, mu, j)
+    x = 0.5 * (_GAUSS_NODES + 1.0) * b  # b s at the nodes mapped to s in [0, 1]
+    phi = A * (np.cosh(x) - np.cos(x)) + B * (np.sinh(x) - np.sin(x))
+    beam = 0.5 * float(_GAUSS_WEIGHTS @ (phi * phi))
+    tip = A * (math.cosh(b) - math.cos(b)) + B * (math.sinh(b) - math.sin(b))
+    slope = b * (A * (math.sinh(b) + math.sin(b)) + B * (math.cosh(b) - math.cos(b)))
+    return beam / (beam + mu * tip * tip + j * slope * slope)
+
+
 @dataclass(frozen=True)
 class Beam:
     """Rectangular elastic beam clamped on the disk, with an optional payload (SI units).
@@ -189,8 +261,17 @@ class Beam:
 
     @property
     def zeta(self) -> float:
-        """Damping ratio of the first mode, eta / (2 beta_1^2) (Table systems, cantilever row)."""
-        return self.eta / (2.0 * BETA1**2)
+        """Damping ratio of the first mode at rest, dimensionless.
+
+        eta / (2 beta_1^2) for the bare beam (Table systems, cantilever row); with a payload
+        eta s / (2 b^2), b the tip-loaded root (`tip_loaded_root`) and s the share of the mode's
+        mass that the beam's damping acts on (`damped_mass_share`): the payload has no damping
+        of its own.
+        """
+        if self.tip_mass == 0.0 and self.tip_inertia == 0.0:
+            return self.eta / (2.0 * BETA1**2)
+        mu, j = self.payload_ratios
+        return self.eta * damped_mass_share(mu, j) / (2.0 * tip_loaded_root(mu, j) ** 2)
 
     def derived(self) -> dict[str, float]:
         """Every derived group, for tables and JSON output.
