@@ -9,6 +9,7 @@ from pathlib import Path
 import matplotlib
 import numpy as np
 import pandas as pd
+from matplotlib import transforms
 from matplotlib.ticker import NullFormatter
 
 from ..model.criterion import power_spectrum
@@ -21,6 +22,7 @@ from ..report.style import (
     apply_style,
     figure,
     legend_in_headroom,
+    ordered_colors,
     panel_label,
     plt,
     save,
@@ -147,6 +149,11 @@ def _draw_measured(ax, x, curve) -> None:
                 capsize=2, label=f"measured ({name})")  # fmt: skip
 
 
+PEAK_MS = 6.0  #: size of Fig. 4's peak marker [points]
+#: Fig. 4's bands above the data for the legends, RMS and Delta RMS panels (over the data's span)
+FIG4_HEADROOM = (0.5, 0.25)
+
+
 def fig4_compare(
     lines: Sequence[pd.DataFrame],
     crit: pd.DataFrame,
@@ -158,7 +165,9 @@ def fig4_compare(
     """Fig. 4: RMS dynamic and quasi-static and Delta RMS against f_d/f_n at two Omega_0.
 
     f_d*, f_0 and the peak of the scan are marked, and the first scanned point at or above the
-    threshold.
+    threshold; the band below f_d* is where the quasi-static model suffices.  The legends stand
+    in bands above the data (`legend_in_headroom`), the peak's marker just above the peak,
+    pointing at it.
 
     Parameters
     ----------
@@ -186,19 +195,27 @@ def fig4_compare(
         a.set_ylabel("RMS($y_m$) / L")
         a.set_title(rf"$\Omega_0$ = {w0:g} rad/s")
         b.semilogy(x, line["delta_rms"], "o-", color=DYN, mfc="none")
-        b.axhline(threshold, color="k", lw=0.8)
+        b.axhline(threshold, color="k", lw=0.8, label=f"threshold {threshold:g}")
         b.set_ylabel(r"$\Delta$RMS")
         b.set_xlabel("$f_d / f_n$")
         row = crit[np.isclose(crit["omega0"], w0)]
         f0 = float(line["f0_hz"].iloc[0]) / fn
         peak = float(x.iloc[int(np.nanargmax(line["rms_dynamic"].to_numpy()))])
-        for ax in (a, b):
-            ax.axvline(f0, color=GREY, ls="--", lw=1, label=r"$f_0/f_n$ (linear)")
+        # the marks end below the legends' bands; (a)'s legend names them for both panels
+        for ax, room, named in zip((a, b), FIG4_HEADROOM, (True, False), strict=True):
+            kw = dict(ymax=1.0 / (1.0 + room))
+            ax.axvline(f0, color=GREY, ls="--", lw=1, **kw,
+                       label=r"$f_0/f_n$ (linear)" if named else None)  # fmt: skip
             if not row.empty and np.isfinite(row["f_d_root"].iloc[0]):
                 fs = float(row["f_d_root"].iloc[0]) / fn
-                ax.axvline(fs, color=ACCENT, ls=":", lw=1.5, label=r"$f_d^\star/f_n$")
-                ax.axvspan(0, fs, color=ACCENT, alpha=0.08)
-        a.plot([peak], [np.nanmax(line["rms_dynamic"])], "v", color="k", label="peak of scan")
+                ax.axvline(fs, color=ACCENT, ls=":", lw=1.5, **kw,
+                           label=r"$f_d^\star/f_n$" if named else None)  # fmt: skip
+                ax.axvspan(0, fs, color=ACCENT, alpha=0.12, **kw,
+                           label="quasi-static suffices" if named else None)  # fmt: skip
+        # above the peak, clear of the peak's own marker (5 points across, and its edge)
+        above = transforms.offset_copy(a.transData, fig=fig, y=PEAK_MS / 2 + 5, units="points")
+        a.plot([peak], [np.nanmax(line["rms_dynamic"])], "v", color="k", ms=PEAK_MS,
+               transform=above, label="peak of scan")  # fmt: skip
         for w, curve in measured.items():
             if np.isclose(float(w), w0):
                 _draw_measured(a, curve.f_d / fn, curve)
@@ -207,8 +224,8 @@ def fig4_compare(
             gd = line.loc[np.isclose(line["f_d"], g), "delta_rms"]
             b.plot([g / fn], gd.to_numpy()[:1], "^", color="k", mfc="none", ms=9,
                    label=r"first point $\geq$ threshold")  # fmt: skip
-        a.legend(fontsize=7)
-        b.legend(fontsize=7)
+        for ax, room in zip((a, b), FIG4_HEADROOM, strict=True):  # the curves fill the panels
+            legend_in_headroom(ax, room, fontsize=7, ncol=2)
         panel_label(a, "(" + "ab"[j] + ")")
         panel_label(b, "(" + "cd"[j] + ")")
     save(fig, pdf, png)
@@ -241,8 +258,9 @@ def fig5_phase(
     a.loglog(c, eg, "^", color=GREY, mfc="none", label="first grid point (paper's rule)")
     a.fill_between(c, 1e-3, e, color=ACCENT, alpha=0.15, label="quasi-static")
     a.set_ylim(min(0.5 * np.nanmin(e), 0.1), 3 * np.nanmax(e))
-    for s in series:
-        a.plot(s["C_max"].iloc[0], s["E_max"].iloc[0], "s", color=DYN)
+    for k, s in enumerate(series):
+        a.plot(s["C_max"].iloc[0], s["E_max"].iloc[0], "s", color=DYN,
+               label="time series (b), (c)" if k == 0 else None)  # fmt: skip
     a.set_xlabel(r"$\mathcal{C}_{max}$")
     a.set_ylabel(r"$\mathcal{E}^\star$")
     a.legend(loc="lower right")
@@ -258,11 +276,11 @@ def fig5_phase(
             rf"$\Delta$RMS={s['delta_rms'].iloc[0]:.3f}",
             fontsize=9,
         )
-        ax.set_ylabel("$y_m$")
+        ax.set_ylabel("$y_m$ / L")
         panel_label(ax, "(" + "bc"[k] + ")")
         if k == len(series) - 1:
             ax.set_xlabel(r"$\tau$")
-            ax.legend(fontsize=7)
+            legend_in_headroom(ax, 0.3, fontsize=7, ncol=2)  # the curves fill the panel's height
     fig.set_layout_engine("constrained")
     save(fig, pdf, png)
 
@@ -368,14 +386,16 @@ def figD9_thresholds(boundary: pd.DataFrame, cfit: pd.DataFrame, pdf: str, png: 
     save(fig, pdf, png)
 
 
-ZETA_UNDERDAMPED = 0.2  #: beams above this damping ratio are drawn grey in Fig. 7
+ZETA_UNDERDAMPED = 0.2  #: beams above this damping ratio are drawn dotted in Fig. 7
 
 
 def fig7_collapse(boundary: pd.DataFrame, c: float, pdf: str, png: str) -> None:
     """Fig. 7: (a) E* against C_max per beam; (b) E*/E_n against x with c sqrt(1 + x).
 
-    x = S_1 G a^2 C_max / E_n^2 (Eq. scaled_analytical_sol); beams with zeta above
-    `ZETA_UNDERDAMPED` are drawn grey.
+    x = S_1 G a^2 C_max / E_n^2 (Eq. scaled_analytical_sol).  The colour says h/L (one distinct
+    colour per value), the marker E, its size L; beams with zeta above `ZETA_UNDERDAMPED` (not
+    in the fit of c) are drawn dotted.  Panel (a)'s legend stands beside the panel, clear of its
+    curves and of its label.
 
     Parameters
     ----------
@@ -387,34 +407,38 @@ def fig7_collapse(boundary: pd.DataFrame, c: float, pdf: str, png: str) -> None:
     pdf, png : str
         Paths the figure is written to.
     """
-    fig, (a, b) = figure(1, 2, width=10.0, height=4.2)
+    fig, (a, b) = figure(1, 2, width=11.0, height=4.2)
     markers = dict(zip(sorted(boundary["E"].unique()), "osD^v<>ph", strict=False))
     hls = sorted(boundary["h_over_L"].unique())
-    cmap = matplotlib.colormaps["plasma"]
+    colors = dict(zip(hls, ordered_colors(len(hls)), strict=True))
     Ls = sorted(boundary["L"].unique())
     b2 = boundary.copy()
     b2["x"] = [_scaled_x(r) for _, r in b2.iterrows()]
+    overdamped = "zeta" in b2 and bool((b2["zeta"] > ZETA_UNDERDAMPED).any())
     for (E, L, hl), sub in b2.groupby(["E", "L", "h_over_L"]):
         sub = sub.sort_values("C_max")
-        col = cmap(hls.index(hl) / max(1, len(hls) - 1) * 0.85)
-        if "zeta" in sub and float(sub["zeta"].iloc[0]) > ZETA_UNDERDAMPED:
-            col = "0.65"  # overdamped or nearly: App. E's c is not expected to hold
+        # overdamped or nearly: App. E's c is not expected to hold
+        dotted = "zeta" in sub and float(sub["zeta"].iloc[0]) > ZETA_UNDERDAMPED
         ms = 4 + 3 * Ls.index(L)
-        kw = dict(marker=markers[E], color=col, ms=ms, mfc="none", ls="-", lw=0.6)
+        kw = dict(marker=markers[E], color=colors[hl], ms=ms, mfc="none", ls=":" if dotted else "-",
+                  lw=0.9 if dotted else 0.6)  # fmt: skip
         a.loglog(sub["C_max"], sub["E_star_root"], **kw)
         b.loglog(sub["x"], sub["E_star_root"] / sub["E_n"], **kw)
     x = np.logspace(np.log10(max(b2["x"].min(), 1e-6)) - 0.3, np.log10(b2["x"].max()) + 0.3, 200)
     b.loglog(x, c * np.sqrt(1 + x), "k-", label=rf"$c\sqrt{{1+x}}$, c = {c:.3f}")
-    if "zeta" in b2 and (b2["zeta"] > ZETA_UNDERDAMPED).any():
-        b.plot([], [], "-", color="0.65", label=rf"grey: $\zeta$ > {ZETA_UNDERDAMPED:g}")
+    dotted_label = rf"dotted: $\zeta$ > {ZETA_UNDERDAMPED:g} (not fitted)"
+    if overdamped:
+        b.plot([], [], ":", color="k", lw=0.9, label=dotted_label)
     for E, m in markers.items():
-        a.plot([], [], m, color="k", mfc="none", label=f"E = {E:.0e} Pa")
+        a.plot([], [], m, color="k", mfc="none", ls="none", label=f"E = {E:.0e} Pa")
     for hl in hls:
-        a.plot([], [], "-", color=cmap(hls.index(hl) / max(1, len(hls) - 1) * 0.85),
-               label=f"h/L = {hl:g}")  # fmt: skip
+        a.plot([], [], "-", color=colors[hl], label=f"h/L = {hl:g}")
+    if overdamped:
+        a.plot([], [], ":", color="k", lw=0.9, label=dotted_label)
     a.set_xlabel(r"$\mathcal{C}_{max}$")
     a.set_ylabel(r"$\mathcal{E}^\star$")
-    a.legend(fontsize=6, title="marker size: L", title_fontsize=6)
+    a.legend(fontsize=6, title="marker size: L", title_fontsize=6, loc="upper left",
+             bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0)  # fmt: skip
     b.set_xlabel(r"$x = S_1 G a^2 \mathcal{C}_{max} / \mathcal{E}_n^2$")
     b.set_ylabel(r"$\mathcal{E}^\star/\mathcal{E}_n$")
     b.legend()

@@ -89,21 +89,50 @@ def save(fig: plt.Figure, pdf: str | Path, png: str | Path | None = None) -> Non
 
 def legend_in_headroom(ax: plt.Axes, headroom: float, **kwargs) -> None:
     """A legend in a band added above the data, for a panel whose curves fill its height: the
-    y-axis is extended upward by `headroom` times its span and the legend stands in the upper
-    right of that band, over no point or curve.
+    y-axis is extended upward by `headroom` times its span (on a log axis, its span in decades)
+    and the legend stands in the upper right of that band, over no point or curve.  The data
+    keep the lower 1 / (1 + headroom) of the panel: lines across it (axvline) end there with
+    ``ymax=1 / (1 + headroom)``.
 
     Parameters
     ----------
     ax : matplotlib.axes.Axes
-        The panel (a linear y-axis), drawn and with its limits set.
+        The panel (a linear or log y-axis), drawn and with its limits set.
     headroom : float
         The band's height over the data's span (e.g. 0.4 for a four-line legend).
     **kwargs
         Passed to `matplotlib.axes.Axes.legend` (fontsize, ncol, ...).
     """
     lo, hi = ax.get_ylim()
-    ax.set_ylim(lo, hi + headroom * (hi - lo))
+    if ax.get_yscale() == "log":
+        ax.set_ylim(lo, hi * (hi / lo) ** headroom)
+    else:
+        ax.set_ylim(lo, hi + headroom * (hi - lo))
     ax.legend(loc="upper right", **kwargs)
+
+
+#: the part of the plasma colormap whose colours stand out on white (contrast ratio >= 3; beyond
+#: 0.6 plasma turns to light orange and yellow)
+ORDERED_SPAN = (0.0, 0.6)
+
+
+def ordered_colors(n: int) -> list[tuple[float, float, float, float]]:
+    """`n` distinct colours in order (dark blue, purple, coral) for the values of an ordered
+    parameter, each dark enough to read on white.
+
+    Parameters
+    ----------
+    n : int
+        How many colours (at least 1).
+
+    Returns
+    -------
+    list of tuple
+        `n` RGBA colours from plasma over `ORDERED_SPAN`, evenly spaced.
+    """
+    lo, hi = ORDERED_SPAN
+    cmap = matplotlib.colormaps["plasma"]
+    return [cmap(lo + (hi - lo) * k / max(1, n - 1)) for k in range(n)]
 
 
 def panel_label(ax: plt.Axes, text: str) -> None:
