@@ -23,7 +23,8 @@ class DiscreteElastica(DiscreteModel):
     The model every run of rotbeam uses: M = W cos, B = W sin with W = Q P, the bending
     stiffness K and the centrifugal, softening and Euler loads summed by the tension quadrature,
     all in units of EI/L^2 with time in units of T.  With `extension` the grid is the stretched
-    one; with a payload Q carries the tip mass and the last angle's row its rotary inertia.
+    one (stretched by the tip mass's pull too); with a payload Q carries the tip mass and the
+    last angle's row its rotary inertia.
 
     Parameters
     ----------
@@ -35,8 +36,8 @@ class DiscreteElastica(DiscreteModel):
     Raises
     ------
     RotbeamInputError
-        For N out of range, `extension` together with a payload (not modelled), `extension`
-        without kappa > 0, or a rotation too fast for a stretched equilibrium.
+        For N out of range, `extension` without kappa > 0, or a rotation too fast for a
+        stretched equilibrium (with a tip mass, whose pull adds to the tension, sooner).
     """
 
     def __init__(self, dl: Dimensionless, N: int) -> None:
@@ -45,11 +46,6 @@ class DiscreteElastica(DiscreteModel):
         self.hub_ratio = float(dl.hub_ratio)
         self.effects = dl.effects
         strain = None
-        if self.effects.extension and (dl.tip_mass or dl.tip_inertia):
-            raise RotbeamInputError(
-                "effects.extension with a tip mass or inertia: the stretched beam under a payload "
-                "is not modelled; switch one of them off"
-            )
         if self.effects.extension and self.effects.centrifugal:
             kappa = dl.kappa
             if not (math.isfinite(kappa) and kappa > 0):
@@ -57,12 +53,15 @@ class DiscreteElastica(DiscreteModel):
                     f"effects.extension needs kappa = (h/L)^2 / 12 > 0, got {kappa!r}"
                 )
             s = np.arange(self.N + 1) / self.N
-            strain = centrifugal_strain(s, self.hub_ratio, kappa, dl.lam_stretch)
+            strain = centrifugal_strain(s, self.hub_ratio, kappa, dl.lam_stretch, dl.tip_mass)
         self.grid = Grid.build(self.N, strain, dl.tip_mass)
         self.n = self.N - 1
         self.eta = float(dl.eta) if self.effects.damping else 0.0
-        #: the payload's rotary inertia on the last angle's row, J / (rho A L^3) / ds
+        #: the payload's rotary inertia on the last angle's row, J / (rho A L^3) / ds, divided
+        #: by that row's 1 + eps like the row's curvature (the stretched grid's K)
         self.rotary = dl.tip_inertia / self.grid.ds
+        if strain is not None:
+            self.rotary /= 1.0 + strain[self.N - 1]
 
     def at(self, dl: Dimensionless) -> DiscreteElastica:
         """The model of another scene on the same grid size.
@@ -235,9 +234,10 @@ class DiscreteElastica(DiscreteModel):
     ) -> tuple[np.ndarray, np.ndarray]:
         """Internal force n_x, n_y at nodes 1..N-1 at one instant (a diagnostic).
 
-        n = Q g with g = F - r_tt - eta r_t (+ Coriolis), the rotating frame's components;
-        the tests check the straight beam's centrifugal tension and the extension's strain
-        with it.
+        n = Q g with g = F - r_tt - eta r_t (+ Coriolis), the rotating frame's components,
+        without the half of the tip's force that the last row's moment balance carries (Q's
+        half torque); the tests check the straight beam's centrifugal tension and the
+        extension's strain with it.
 
         Parameters
         ----------
@@ -263,4 +263,8 @@ class DiscreteElastica(DiscreteModel):
             gx = gx + 2 * lam * yt
             gy = gy - 2 * lam * xt
         Qd = g.Q if g.Q_beam is None else g.Q_beam  # the payload has no damping of its own
-        return g.Q @ gx - self.eta * (Qd @ xt), g.Q @ gy - self.eta * (Qd @ yt)
+        nx, ny = g.Q @ gx - self.eta * (Qd @ xt), g.Q @ gy - self.eta * (Qd @ yt)
+        if self.dl.tip_mass:  # the last row's half torque belongs to the moment scheme
+            nx[-1] -= 0.5 * self.dl.tip_mass * gx[-1]
+            ny[-1] -= 0.5 * self.dl.tip_mass * gy[-1]
+        return nx, ny

@@ -34,14 +34,17 @@ def check_N(N: int) -> int:
 
 
 def centrifugal_strain(
-    s: np.ndarray | float, hub_ratio: float, kappa: float, lam: float
+    s: np.ndarray | float, hub_ratio: float, kappa: float, lam: float, tip_mass: float = 0.0
 ) -> np.ndarray:
     """Axial strain eps(s) of the straight extensible beam spinning steadily at lam, exact.
 
     The `extension` effect stretches the grid by it.  n' = -lam^2 (r_o + x), x' = 1 + eps,
-    eps = kappa n, n(1) = 0, x(0) = 0 give n'' + k^2 n = -lam^2 with k = |lam| sqrt(kappa), whose
-    solution is 1 + eps = [cos(k s) + k r_o sin(k (1 - s))] / cos(k), evaluated without
-    cancellation; eps = kappa lam^2 [r_o (1 - s) + (1 - s^2)/2] (1 + O(k^2)) (docs/model.md,
+    eps = kappa n, x(0) = 0 and the payload's pull n(1) = mu lam^2 (r_o + x(1)) give
+    u = 1 + eps with u'' = -k^2 u, k = |lam| sqrt(kappa), u'(0) = -k^2 r_o, u(1) + mu u'(1) = 1,
+    whose solution is evaluated without cancellation in its numerator:
+    eps = [2 sin(a) sin(b) + k r_o sin(2b) + mu k (sin k + k r_o cos(2b))] / (cos k - mu k sin k),
+    a = k (1 + s) / 2, b = k (1 - s) / 2;
+    eps = kappa lam^2 [r_o (1 - s) + (1 - s^2)/2 + mu (r_o + 1)] (1 + O(k^2)) (docs/model.md,
     "Axial stretching").
 
     Parameters
@@ -54,6 +57,9 @@ def centrifugal_strain(
         EI / (EA L^2) = (h/L)^2 / 12, dimensionless.
     lam : float
         The steady rotation Omega T that stretches the beam, dimensionless.
+    tip_mass : float
+        mu = m / (rho A L) of a payload at s = 1, dimensionless, >= 0: its centrifugal pull
+        adds to the tension.
 
     Returns
     -------
@@ -63,17 +69,44 @@ def centrifugal_strain(
     Raises
     ------
     RotbeamInputError
-        For k >= pi/2: no tensile equilibrium (the stretch runs away).
+        For k at or beyond the axial limit k_c (cos k_c = mu k_c sin k_c; pi/2 without a
+        payload): no tensile equilibrium (the stretch runs away).
     """
     k = abs(float(lam)) * math.sqrt(kappa)
-    if not k < 0.5 * math.pi:
-        raise RotbeamInputError(
-            f"effects.extension: no stretched equilibrium at lam sqrt(kappa) = {k:.4g} >= pi/2 "
-            f"(lam = Omega T = {lam:.4g}, kappa = (h/L)^2/12 = {kappa:.4g})"
-        )
+    mu = float(tip_mass)
+    denominator = math.cos(k) - mu * k * math.sin(k)
+    if not (k < 0.5 * math.pi and denominator > 0):
+        raise RotbeamInputError(_axial_limit_message(k, lam, kappa, mu))
     s = np.asarray(s, dtype=float)
     a, b = 0.5 * k * (1.0 + s), 0.5 * k * (1.0 - s)
-    return (2.0 * np.sin(a) * np.sin(b) + k * hub_ratio * np.sin(2.0 * b)) / math.cos(k)
+    numerator = 2.0 * np.sin(a) * np.sin(b) + k * hub_ratio * np.sin(2.0 * b)
+    if mu:
+        numerator = numerator + mu * k * (math.sin(k) + k * hub_ratio * np.cos(2.0 * b))
+    return numerator / denominator
+
+
+def _axial_limit(mu: float) -> float:
+    """k_c, the first root of cos k = mu k sin k in (0, pi/2) for mu > 0, by bisection
+    (cos k - mu k sin k falls from 1 to -mu pi/2 on [0, pi/2])."""
+    lo, hi = 0.0, 0.5 * math.pi
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        if math.cos(mid) - mu * mid * math.sin(mid) > 0:
+            lo = mid
+        else:
+            hi = mid
+    return lo
+
+
+def _axial_limit_message(k: float, lam: float, kappa: float, mu: float) -> str:
+    """The one-line refusal of a rotation at or beyond the axial limit, naming k and its bound."""
+    bound = "pi/2"
+    if mu:
+        bound = f"{_axial_limit(mu):.6g} (the root of cos k = mu k sin k at tip mass mu = {mu:.4g})"
+    return (
+        f"effects.extension: no stretched equilibrium at lam sqrt(kappa) = {k:.6g} >= {bound} "
+        f"(lam = Omega T = {lam:.4g}, kappa = (h/L)^2/12 = {kappa:.4g})"
+    )
 
 
 @dataclass(frozen=True)
@@ -113,6 +146,8 @@ class Grid:
         tip_mass : float
             A point mass at node N, m / (rho A L): the tension quadrature Q gains it in its last
             column (the tip's load and inertia reach every node's tension), W = Q P with it.
+            Q sums mass per reference length, so the column is the same on a stretched grid
+            (P carries the stretch).
 
         Returns
         -------

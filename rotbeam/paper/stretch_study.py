@@ -49,7 +49,7 @@ def clamp_strain(beam: Beam, omega0: float, amplitude: float) -> float:
     """
     on = Effects(extension=True)
     dl = Dimensionless.from_physical(beam, Drive(omega0=omega0, f_d=1.0, amplitude=amplitude), on)
-    return float(centrifugal_strain(0.0, dl.hub_ratio, dl.kappa, dl.lam_stretch))
+    return float(centrifugal_strain(0.0, dl.hub_ratio, dl.kappa, dl.lam_stretch, dl.tip_mass))
 
 
 def stretch_line(beam: Beam, c_max: float, amplitude: float, threshold: float, effects: Effects,
