@@ -80,6 +80,63 @@ def test_every_caption_belongs_to_a_report_entry():
     assert not orphans, f"captions no report() uses (a result dropped from the report?): {orphans}"
 
 
+def front_page(template: str, config: dict) -> str:
+    """The report's front page as text: the ``report:`` description rendered as Snakemake's
+    report renders it (Jinja with trim_blocks and lstrip_blocks, ``snakemake.config`` the run's
+    config, then docutils), its HTML tags dropped; a docutils warning fails."""
+    import html
+
+    from docutils.core import publish_parts
+    from jinja2 import Environment
+
+    class Snakemake:
+        pass
+
+    Snakemake.config = config
+    env = Environment(trim_blocks=True, lstrip_blocks=True)
+    rst = env.from_string(template).render(snakemake=Snakemake, categories={}, files={})
+    body = publish_parts(rst, writer="html", settings_overrides={"halt_level": 2})
+    return html.unescape(re.sub(r"<[^>]+>", "", body["html_body"]))
+
+
+def missing_config(page: str, config: dict) -> list[str]:
+    """The entries of `config` that `page` does not show: a section's entries as indented
+    ``name: value`` lines under its ``section:`` line, a plain value as a ``name: value`` line
+    (a value as Python prints it)."""
+    shown, section = set(), None
+    for line in page.splitlines():
+        if line.startswith("  ") and section:
+            shown.add((section, line.strip()))
+        else:
+            section = line[:-1] if line.endswith(":") and " " not in line else None
+            shown.add((None, line.strip()))
+    missing = []
+    for key, value in config.items():
+        if isinstance(value, dict) and value:
+            missing += [f"{key}.{k}" for k, v in value.items() if (key, f"{k}: {v}") not in shown]
+        elif (None, f"{key}: {value}") not in shown:
+            missing.append(key)
+    return missing
+
+
+def test_front_page_shows_the_configuration_the_run_used():
+    """The front page promises "the configuration shown below": it shows every section of the
+    quick run's config (config.yaml with quick.yaml merged over it) with its values, the quick
+    values (N = 12) and not the full config's."""
+    import yaml
+    from snakemake.utils import update_config
+
+    config = yaml.safe_load((ROOT / "config" / "config.yaml").read_text())
+    update_config(config, yaml.safe_load((ROOT / "config" / "quick.yaml").read_text()))
+    page = front_page(workflow_caption().read_text(), config)
+    assert "shown below" in page
+    assert missing_config(page, config) == []
+    # the control: a front page that shows no configuration fails the check
+    assert "numerics.N" in missing_config(
+        front_page("The configuration shown below.", config), config
+    )
+
+
 class Chromium:
     """Headless Chromium and a DevTools-protocol client on a pipe: the browser reads commands on
     its fd 3 and writes answers and events on its fd 4, each message JSON ended by a NUL."""
