@@ -1,10 +1,11 @@
 """The engineer's question for one scene: is the quasi-static answer good enough here?
 
 `judge` gives the full model's verdict (Delta RMS against a threshold, the paper's criterion)
-and the linear estimate f_d* ~ c_0 f_0 of where the boundary lies; `critical` finds f_d* of the
-full model at one speed by root finding started at that estimate (`rotbeam critical`).  The
-criterion, the estimate, its lag branch for overdamped beams and the search: docs/model.md, "The
-verdict and the linear estimate of f_d*".  The verdict's figure is `rotbeam.report.verdict_plot`.
+and the linear estimate of where the boundary lies (the damped first mode driven by every
+harmonic of the drive; c_0 f_0 for the sine); `critical` finds f_d* of the full model at one
+speed by root finding started at that estimate (`rotbeam critical`).  The criterion, the
+estimate, its lag branch for overdamped beams and the search: docs/model.md, "The verdict and
+the linear estimate of f_d*".  The verdict's figure is `rotbeam.report.verdict_plot`.
 """
 
 from __future__ import annotations
@@ -14,11 +15,13 @@ import time
 from collections.abc import Callable
 from dataclasses import dataclass, replace
 
+import numpy as np
+
 from ..config.checks import check_threshold
 from ..config.errors import RotbeamInputError
 from ..model.modes import damping_ratio, resonance_frequency_hz
-from ..model.params import Beam, Drive
-from ..model.secondorder import c0_root
+from ..model.params import Drive
+from ..model.secondorder import c0_root, delta_rms_harmonics, first_crossing
 from ..runs.move import SETTLED, MoveResult
 from ..runs.scene import Scene, SceneResult, simulate
 from ..solve.timebudget import TimeBudget
@@ -39,7 +42,8 @@ class Verdict:
     quasistatic_ok: bool | None
     f0_hz: float  #: first in-plane frequency at Omega_0 + a (linearised model)
     c0: float  #: App. E ratio f_d* / f_0 at the beam's zeta (NaN where no root exists)
-    fd_star_estimate_hz: float  #: c0 f0, or the lag-branch estimate where c0 does not exist
+    #: the linear estimate of f_d* [Hz] (`linear_estimate`); NaN without an Euler load
+    fd_star_estimate_hz: float
     text: str  #: one line for a reader
 
     def as_dict(self) -> dict[str, float | bool | str | None]:
@@ -66,9 +70,10 @@ def judge(result: SceneResult, threshold: float = 0.10) -> Verdict:
     """The verdict of the full model on one scene, and the linear estimate of the boundary.
 
     Quasi-static is good enough where Delta RMS < `threshold`; a dynamic run without a steady
-    state gives no verdict.  The linear estimate f_d* = c_0 f_0 (or the lag branch for overdamped
-    beams) tells how far from the boundary the scene's f_d lies (docs/model.md, "The verdict and
-    the linear estimate of f_d*").
+    state gives no verdict.  The linear estimate of f_d* (`linear_estimate`: c_0 f_0 for the
+    sine) tells how far from the boundary the scene's f_d lies; a drive without an Euler load
+    has none, and the text says so (docs/model.md, "The verdict and the linear estimate of
+    f_d*").
 
     Parameters
     ----------
@@ -91,11 +96,11 @@ def judge(result: SceneResult, threshold: float = 0.10) -> Verdict:
     th = check_threshold(threshold)
     beam, drive = result.scene.beam, result.scene.drive
     f0 = resonance_frequency_hz(beam, drive.omega_max)
-    c0, ratio, branch = linear_estimate(damping_ratio(beam), th)
-    k = dominant_harmonic(drive)
-    if k > 1:  # harmonic k meets the first mode first
-        ratio, branch = ratio / k, f"{branch} / {k} (harmonic {k} has the largest Euler load)"
-    where = f"f_d / f_0 = {drive.f_d / f0:.3g}; linear estimate f_d* = {ratio * f0:.3g} Hz{branch}"
+    zeta = damping_ratio(beam)
+    ratio, note = linear_estimate(drive, zeta, th)
+    where = f"f_d / f_0 = {drive.f_d / f0:.3g}; " + (
+        f"linear estimate f_d* = {ratio * f0:.3g} Hz{note}" if math.isfinite(ratio) else note
+    )
     d = result.delta_rms
     if not result.converged or not math.isfinite(d):
         ok = None
@@ -106,18 +111,64 @@ def judge(result: SceneResult, threshold: float = 0.10) -> Verdict:
     else:
         ok = False
         text = f"inertia matters: Delta RMS {d:.3g} >= {th:g}, use the dynamic model ({where})"
-    return Verdict(th, d, ok, f0, c0, ratio * f0, text)
+    return Verdict(th, d, ok, f0, _app_e_c0(zeta, th), ratio * f0, text)
 
 
-def linear_estimate(zeta: float, threshold: float) -> tuple[float, float, str]:
-    """The linear estimate of f_d* / f_0 at a damping ratio: App. E's c_0, or the lag branch.
+#: A harmonic whose Euler load k |a_k| is below this fraction of the drive's largest |Omega| is
+#: round-off of a sampled profile's transform (a constant profile leaves ~1e-16), not a load.
+LOAD_FLOOR = 1e-12
 
-    c_0 is the first root of the canonical damped oscillator's Delta RMS; a beam too damped for
-    it crosses where its response lags the static one by the threshold (docs/model.md, "The
-    verdict and the linear estimate of f_d*").
+#: What the verdict and `critical` say of a periodic drive without an Euler load.
+NO_EULER_LOAD = "the drive has no Euler load (a constant speed): no f_d*"
+
+
+def euler_loads(drive: Drive) -> tuple[tuple[int, ...], tuple[float, ...]]:
+    """The harmonics of a periodic drive that load the beam, and their Euler loads.
+
+    Harmonic k of Omega, a_k sin(2 pi k f_d t + phase_k), has the rate
+    2 pi f_d k a_k cos(...): its Euler load, at k f_d, is proportional to k |a_k|, the factor
+    2 pi f_d being common to all harmonics (docs/model.md, "The verdict and the linear estimate
+    of f_d*").  Harmonics below LOAD_FLOOR of the largest |Omega| are left out.
 
     Parameters
     ----------
+    drive : Drive
+        A periodic drive: the sine, harmonics or a sampled profile (its interpolant's
+        harmonics).
+
+    Returns
+    -------
+    orders : tuple of int
+        The harmonics k >= 1 with a load; empty for a constant speed.
+    loads : tuple of float
+        k |a_k| [rad/s], one per order.
+
+    Raises
+    ------
+    RotbeamInputError
+        For a single move, which has no repetition rate and no f_d*.
+    """
+    if drive.move is not None:
+        raise RotbeamInputError("a single move has no repetition rate: no f_d* to find")
+    floor = LOAD_FLOOR * drive.omega_max
+    loaded = [(k, k * abs(a)) for k, a, _ in drive.law(1.0).terms if k * abs(a) > floor]
+    return tuple(k for k, _ in loaded), tuple(load for _, load in loaded)
+
+
+def linear_estimate(drive: Drive, zeta: float, threshold: float) -> tuple[float, str]:
+    """The linear estimate of f_d* / f_0: the lowest f_d at which the damped first mode, driven
+    by every harmonic's Euler load, has Delta RMS = threshold.
+
+    Each harmonic k loads the first mode (damping ratio zeta) at k f_d through
+    H(r) = 1 / (1 - r^2 + 2 i zeta r), r = k f_d / f_0, and the quasi-static response follows the
+    load; their RMS over the period give Delta RMS (`rotbeam.model.secondorder.first_crossing`).
+    For one harmonic k this is App. E's c_0 / k, or where the response lags the static one for
+    a beam too damped for c_0 (docs/model.md, "The verdict and the linear estimate of f_d*").
+
+    Parameters
+    ----------
+    drive : Drive
+        A periodic drive (its f_d is not read).
     zeta : float
         Damping ratio of the first mode, dimensionless, >= 0.
     threshold : float
@@ -125,31 +176,49 @@ def linear_estimate(zeta: float, threshold: float) -> tuple[float, float, str]:
 
     Returns
     -------
-    c0 : float
-        App. E's c_0 (dimensionless), NaN where no root exists.
     ratio : float
-        The ratio f_d* / f_0 to use: c_0, or the lag branch's root.
+        f_d* / f_0, dimensionless; NaN where the drive has no Euler load.
     note : str
-        " = c_0 f_0", or a note naming the lag branch, for the verdict's text.
+        For the verdict's text: how the estimate is made (" = c_0 f_0" for the sine), or
+        NO_EULER_LOAD.
+
+    Raises
+    ------
+    RotbeamInputError
+        For a single move, or `zeta` or `threshold` out of range.
     """
+    orders, loads = euler_loads(drive)
+    if not orders:
+        return math.nan, NO_EULER_LOAD
+    ratio = first_crossing(orders, loads, zeta, threshold)
+    return ratio, _estimate_note(orders, loads, zeta, ratio)
+
+
+def _estimate_note(orders: tuple[int, ...], loads: tuple[float, ...], zeta: float,
+                   ratio: float) -> str:  # fmt: skip
+    """How the estimate is made, for the verdict's text: App. E's c_0 for one harmonic; else the
+    number of harmonics and the one that carries most of RMS_dyn^2 - RMS_qs^2 at the crossing."""
+    lags = delta_rms_harmonics(ratio, orders, loads, zeta) < 0.0
+    lag = f", where the response lags (zeta {zeta:.3g})" if lags else ""
+    if len(orders) == 1:
+        k = orders[0]
+        if lags:
+            return lag if k == 1 else f"{lag[:-1]}, harmonic {k})"
+        return " = c_0 f_0" if k == 1 else f" = c_0 f_0 / {k}"
+    r = np.asarray(orders, dtype=float) * ratio
+    w = np.asarray(loads) ** 2
+    share = w * np.abs(1.0 / ((1.0 - r * r) ** 2 + (2.0 * zeta * r) ** 2) - 1.0)
+    i = int(np.argmax(share))
+    return (f" ({len(orders)} harmonics through the first mode; mostly harmonic {orders[i]}, at "
+            f"{orders[i]} f_d* = {r[i]:.3g} f_0{lag})")  # fmt: skip
+
+
+def _app_e_c0(zeta: float, threshold: float) -> float:
+    """App. E's c_0 at the beam's zeta, NaN where it does not exist (an overdamped beam)."""
     try:
-        c0 = c0_root(zeta, threshold)
-        return c0, c0, " = c_0 f_0"
-    except RotbeamInputError:  # too damped to exceed the static response: where it lags it
-        return math.nan, _lag_ratio(zeta, threshold), f", where the response lags (zeta {zeta:.3g})"
-
-
-def _lag_ratio(zeta: float, threshold: float) -> float:
-    """Where the canonical oscillator's response falls below its static one by the threshold:
-    sqrt((1 - c^2)^2 + (2 zeta c)^2) = 1 + threshold, i.e. c^4 - 2 B c^2 + 1 - (1 + t)^2 = 0 with
-    B = 1 - 2 zeta^2 (the |.| branch of App. E's Delta RMS, the one overdamped beams cross)."""
-    B = 1.0 - 2.0 * zeta * zeta
-    C = 1.0 - (1.0 + threshold) ** 2  # < 0: one positive root in c^2
-    return (
-        math.sqrt(B + math.sqrt(B * B - C))
-        if B >= 0
-        else math.sqrt(-C / (-B + math.sqrt(B * B - C)))
-    )
+        return c0_root(zeta, threshold)
+    except RotbeamInputError:
+        return math.nan
 
 
 class _NoSteadyState(Exception):
@@ -254,7 +323,7 @@ def _bracket(
 
 def critical_start_hz(scene: Scene, threshold: float = 0.10) -> float:
     """Where `critical` starts: the linear estimate of f_d* [Hz] (`linear_estimate` times f_0
-    at |Omega_0| + a); `rotbeam critical --effects auto` budgets the effects here.
+    at the drive's largest |Omega|); `rotbeam critical --effects auto` budgets the effects here.
 
     Parameters
     ----------
@@ -271,45 +340,21 @@ def critical_start_hz(scene: Scene, threshold: float = 0.10) -> float:
     Raises
     ------
     RotbeamInputError
-        If `threshold` is not a number in (0, 1).
+        If `threshold` is not a number in (0, 1), or the drive is a single move or has no Euler
+        load (no f_d* to find).
     """
+    return _start(scene, check_threshold(threshold))[1]
+
+
+def _start(scene: Scene, threshold: float) -> tuple[float, float]:
+    """f_0 [Hz] at the drive's largest |Omega| and the linear estimate of f_d* [Hz]; a drive
+    without an Euler load has no f_d* to find (RotbeamInputError)."""
     beam, drive = scene.beam, scene.drive
     f0 = resonance_frequency_hz(beam, drive.omega_max)
-    return _linear_start(beam, check_threshold(threshold), f0) / dominant_harmonic(drive)
-
-
-def dominant_harmonic(drive: Drive) -> int:
-    """The harmonic of a periodic drive with the largest Euler load: where the f_d* search starts.
-
-    Harmonic k puts an Euler load of amplitude proportional to k |a_k| at k f_d, so it meets
-    the first mode at f_d = f_0 / k; the one with the largest k |a_k| sets the linear estimate
-    c_0 f_0 / k that `judge` prints and `critical` starts from (docs/model.md, "Drives").
-
-    Parameters
-    ----------
-    drive : Drive
-        A periodic drive: the sine, harmonics or a sampled profile (its interpolant's
-        harmonics).
-
-    Returns
-    -------
-    int
-        k >= 1 (1 for the sine).
-
-    Raises
-    ------
-    RotbeamInputError
-        For a single move, which has no repetition rate and no f_d*.
-    """
-    if drive.move is not None:
-        raise RotbeamInputError("a single move has no repetition rate: no f_d* to find")
-    terms = drive.law(1.0).terms
-    return max(terms, key=lambda t: abs(t[1]) * t[0])[0] if terms else 1
-
-
-def _linear_start(beam: Beam, threshold: float, f0: float) -> float:
-    """App. E's c_0 (or the lag branch) at the beam's zeta, times f_0 [Hz]."""
-    return linear_estimate(damping_ratio(beam), threshold)[1] * f0
+    ratio, _ = linear_estimate(drive, damping_ratio(beam), threshold)
+    if not math.isfinite(ratio):
+        raise RotbeamInputError(f"{NO_EULER_LOAD} to find: Delta RMS is 0 at every f_d")
+    return f0, ratio * f0
 
 
 def critical(
@@ -322,12 +367,12 @@ def critical(
     """f_d* [Hz]: the drive frequency at which Delta RMS of the full model reaches `threshold`,
     at the scene's speed and amplitude, by root finding instead of a dense scan.
 
-    Starts at the linear estimate (App. E's c_0 f_0, within a few per cent on the reference
-    beam, or the lag branch for overdamped beams: `linear_estimate`), steps by BRACKET_FACTOR
-    until Delta RMS - threshold changes sign, then runs brentq to a relative tolerance `rtol`
-    in f_d.  This is the crossing nearest the estimate; it is the paper's first crossing where
-    Delta RMS rises monotonically below it.  A run without a steady state, or the time budget
-    spent, ends the search with found = False and its reason.
+    Starts at the linear estimate (`linear_estimate`: App. E's c_0 f_0 for the sine, within a
+    few per cent on the reference beam, or its lag branch for overdamped beams), steps by
+    BRACKET_FACTOR until Delta RMS - threshold changes sign, then runs brentq to a relative
+    tolerance `rtol` in f_d.  This is the crossing nearest the estimate; it is the paper's first
+    crossing where Delta RMS rises monotonically below it.  A run without a steady state, or the
+    time budget spent, ends the search with found = False and its reason.
 
     Parameters
     ----------
@@ -351,7 +396,8 @@ def critical(
     Raises
     ------
     RotbeamInputError
-        If `threshold` is not in (0, 1) or `rtol` not a float in [1e-8, 0.1].
+        If `threshold` is not in (0, 1), `rtol` not a float in [1e-8, 0.1], or the drive is a
+        single move or has no Euler load (no f_d* to find).
     """
     from scipy.optimize import brentq
 
@@ -359,9 +405,8 @@ def critical(
     if not (isinstance(rtol, float) and 1e-8 <= rtol <= 0.1):
         raise RotbeamInputError(f"rtol must be in [1e-8, 0.1], got {rtol!r}")
     t0 = time.perf_counter()
-    beam, drive = scene.beam, scene.drive
-    f0 = resonance_frequency_hz(beam, drive.omega_max)
-    start = estimate = _linear_start(beam, th, f0) / dominant_harmonic(drive)
+    f0, start = _start(scene, th)
+    estimate = start
     excess = _Excess(scene, th, time_budget or TimeBudget(scene.numerics.max_seconds), progress)
 
     def done(found: bool, f: float, msg: str) -> Critical:

@@ -4,6 +4,7 @@ verdict of `rotbeam.analysis.verdict.judge` and the cost of the run (`rotbeam si
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 
 from ..analysis.verdict import Verdict
@@ -44,7 +45,10 @@ def plot_verdict(result: SceneResult, verdict: Verdict, path: str | Path) -> Non
     ax.set_xlabel("t [s] (steady state)")
     ax.set_ylabel("$y_m / L$ (midspan)")
     where = f"$f_d / f_0$ = {drive.f_d / verdict.f0_hz:.3g}, $f_0$ = {verdict.f0_hz:.3g} Hz"
-    where += f"; linear estimate $f_d^*$ = {verdict.fd_star_estimate_hz:.3g} Hz"
+    if math.isfinite(verdict.fd_star_estimate_hz):
+        where += f"; linear estimate $f_d^*$ = {verdict.fd_star_estimate_hz:.3g} Hz"
+    else:
+        where += "; no Euler load, no $f_d^*$"
     what = rf"$\Omega_0$ = {drive.omega0:g} rad/s, a = {drive.amplitude:g} rad/s"
     if drive.kind != "sine":
         what = f"{drive.kind} drive, largest speed {drive.omega_max:.4g} rad/s"
