@@ -221,7 +221,7 @@ S_CURVE = {"shape": "s-curve", "omega_min": 0.0, "omega_max": 20.0, "ramp": 0.2}
 
 @pytest.mark.parametrize(
     "profile, f_d",
-    [  # the trapezoid: 8 full-model runs at 0.17-0.21 Hz, 23 s; the s-curve 9 runs, 6 s
+    [  # the trapezoid: 8 full-model runs at 0.17-0.21 Hz, 10-23 s; the s-curve 9 runs, 3-6 s
         pytest.param(TRAPEZOID, 0.5, id="trapezoid", marks=pytest.mark.slow),
         pytest.param(S_CURVE, 1.0, id="s-curve"),
     ],
