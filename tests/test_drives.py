@@ -88,10 +88,12 @@ def move_file(tmp_path, duration: float, top: float = 10.0, samples: int = 101):
 
 
 def test_a_slow_move_is_quasistatic(tmp_path):
-    """A move 4 and 16 first-mode periods long (the sin^2 speed of the README): the residual
-    vibration falls and the dynamic peak tends to the quasi-static one as the move slows.  The
-    residual falls only like 1/duration relative to the peak (measured 0.23, 0.063): sin^2
-    starts and ends with a jump in jerk; the peaks meet fast (measured 9e-2, 4.5e-3)."""
+    """A move 4 and 16 first-mode periods long (the sin^2 speed of the README), from rest: the
+    residual vibration falls and the dynamic peak tends to the quasi-static one as the move
+    slows, both like 1/duration or faster relative to the peak.  sin^2 starts and ends with a
+    jump in jerk: the Euler load ramps up from zero with a slope ~ 1/duration^2, and a mode at
+    rest under a ramp lags the static response by slope / omega^3, a share ~ 1/(omega
+    duration) of the peak (measured: residual 0.23, 0.063; peak 0.28, 0.044)."""
     T1 = 1.0 / Beam().f_n
     out = []
     for periods in (4, 16):
@@ -101,7 +103,7 @@ def test_a_slow_move_is_quasistatic(tmp_path):
         out.append((res.residual_ym / res.peak_ym, abs(res.peak_ym / res.peak_ym_quasistatic - 1)))
     (r4, p4), (r16, p16) = out
     assert r16 < 0.3 * r4
-    assert p16 < 0.1 * p4 and p16 < 0.01
+    assert p16 < 0.3 * p4 and p16 < 0.05
 
 
 def test_a_move_without_acceleration_has_no_euler_response(tmp_path):
@@ -283,3 +285,65 @@ def test_scene_files_names_the_csv_files_a_scene_reads():
     assert scene_files({"drive": {"profile": {"file": "q.csv", "harmonics": 5}}}) == ["q.csv"]
     assert scene_files({"drive": {"profile": {"shape": "s-curve"}}}) == []
     assert scene_files({"drive": {"omega0": 5}}) == [] and scene_files({"drive": 3}) == []
+
+
+def chain_move_peak(beam: Beam, duration: float, top: float, n_links: int) -> float:
+    """The largest |y_m| / L during the sin^2 move Omega = top sin^2(pi t / duration) of the
+    rigid-link chain (tests/chain_model.py), started at rest in the straight state, with the
+    exact law (no spline)."""
+    from scipy.integrate import solve_ivp
+
+    from chain_model import ChainModel
+
+    T = beam.T
+    chain = ChainModel(n_links, beam.delta, eta=beam.eta)
+    w, d = top * T, duration / T
+
+    def loads(tau: float) -> tuple[float, float]:
+        x = math.pi * tau / d
+        return w * math.sin(x) ** 2, w * math.pi / d * math.sin(2 * x)
+
+    n = n_links
+    tau = np.linspace(0.0, d, 801)
+    sol = solve_ivp(lambda t, z: chain.rhs(z, *loads(t)), (0.0, d), np.zeros(2 * n),
+                    method="Radau", jac=lambda t, z: chain.jac(z, *loads(t)), rtol=1e-7,
+                    atol=1e-9, t_eval=tau)  # fmt: skip
+    assert sol.success
+    y_m = np.array([chain.nodes(phi)[1][n // 2] for phi in sol.y[:n].T])
+    return float(np.max(np.abs(y_m)))
+
+
+def test_a_move_starts_at_rest_as_the_chain_model_does(tmp_path):
+    """README's sin^2 move (10 rad/s, 0.3 s): the beam at rest before the move.  Its peak |y_m|
+    during the move, Richardson-extrapolated from N = 10 and 20, against the rigid-link chain
+    (an independent discretisation, second order too) started at rest, extrapolated from 10 and
+    20 links: 0.1 % apart (measured 0.003 %; the pairs themselves are 1.2 % and 0.7 % apart).
+    Started in the quasi-static state and rate of the first sample (`move_start: quasistatic`)
+    the peak is 17 % lower: the test fails if a move starts moving."""
+    path = move_file(tmp_path, 0.3, samples=301)
+
+    def peak(N: int, **drive) -> float:
+        res = simulate_move(scene({"move": str(path), "settle": 0.01, **drive}, {"N": N}))
+        assert res.converged
+        return res.peak_ym
+
+    coarse, fine = peak(10), peak(20)
+    ours = (4 * fine - coarse) / 3
+    chain = [chain_move_peak(Beam(), 0.3, 10.0, n) for n in (10, 20)]
+    ref = (4 * chain[1] - chain[0]) / 3
+    assert ours == pytest.approx(ref, rel=1e-3)
+    assert peak(20, move_start="quasistatic") < 0.9 * fine
+
+
+def test_a_move_from_a_steady_speed_starts_straight(tmp_path):
+    """A move from 20 to 30 rad/s: before it the disk turns steadily at 20 rad/s, the radially
+    clamped beam is straight (the centrifugal load alone bends it nowhere), so y_m = 0 and its
+    rate 0 at t = 0; the Euler load then bends it, y_m of the sign of -dOmega/dt (Eq. ForceE)."""
+    t = np.linspace(0.0, 0.4, 81)
+    path = tmp_path / "up.csv"
+    np.savetxt(path, np.column_stack([t, 20 + 10 * np.sin(np.pi * t / 0.8) ** 2]),
+               delimiter=",", header="t,omega", comments="")  # fmt: skip
+    res = simulate_move(scene({"move": str(path), "settle": 0.01}))
+    assert res.y_dynamic[0] == 0.0
+    assert abs(res.y_dynamic[1]) < 1e-3 * res.peak_ym  # zero rate: y_m grows like t^2 at first
+    assert np.sign(res.y_dynamic[len(res.y_dynamic) // 4]) == -np.sign(res.omega[-1] - 20)

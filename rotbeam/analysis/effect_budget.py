@@ -16,6 +16,7 @@ from typing import Any
 
 from ..config.errors import RotbeamInputError
 from ..config.scenefile import AUTO_TOL as _AUTO_TOL
+from ..config.threads import one_blas_thread
 from ..model.params import Effects
 from ..runs.scene import Scene, SceneResult, simulate
 from ..solve.timebudget import TimeBudget
@@ -177,6 +178,7 @@ def _sequential(scene: Scene, base: SceneResult, budget: EffectBudget, _run: _Ru
     budget.rms_last = previous
 
 
+@one_blas_thread
 def effect_budget(
     scene: Scene,
     progress: Callable[[], None] | None = None,
@@ -294,6 +296,7 @@ def auto_effects(budget: EffectBudget, tol: float = AUTO_TOL) -> AutoEffects:
                        notes)  # fmt: skip
 
 
+@one_blas_thread
 def auto_scene(
     scene: Scene, tol: float = AUTO_TOL, time_budget: TimeBudget | None = None
 ) -> tuple[Scene, AutoEffects, EffectBudget]:

@@ -18,6 +18,7 @@ from scipy.optimize import least_squares
 from scipy.stats import t as student_t
 
 from ..config.errors import RotbeamInputError
+from ..config.threads import one_blas_thread
 from ..model.modes import resonance_frequency_hz
 from ..model.params import Beam, Drive, Effects
 from ..runs.scene import Scene, simulate
@@ -249,6 +250,7 @@ def start_values(curve: ResonanceCurve, names: tuple[str, ...], beam: Beam,
     return beam
 
 
+@one_blas_thread
 def identify(
     curve: ResonanceCurve,
     omega0: float,

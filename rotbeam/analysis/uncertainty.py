@@ -18,6 +18,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from ..config.errors import RotbeamInputError
+from ..config.threads import one_blas_thread
 from ..model.params import Beam, Drive
 
 if TYPE_CHECKING:
@@ -399,6 +400,7 @@ def at_means(scene: Scene, inputs: dict[str, tuple[float, float]]) -> Scene:
     return replace(scene, beam=beam, drive=drive)
 
 
+@one_blas_thread
 def simulate_spread(
     scene: Scene,
     plain: SceneResult,
@@ -455,6 +457,7 @@ def simulate_spread(
     return propagate(inputs, run, method, samples, threshold)
 
 
+@one_blas_thread
 def critical_spread(
     scene: Scene,
     plain: Critical,

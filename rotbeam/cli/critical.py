@@ -64,7 +64,7 @@ def run(args: argparse.Namespace) -> int:
         out["effects_auto"] = show.auto_dict(auto, budget, f_start)
     with bar(args, "f_d* search", "run") as b:
         res = critical(scene, threshold, ftol, progress=b.update, time_budget=time_budget)
-    out = res.as_dict() | {"omega0": scene.drive.omega0, "amplitude": scene.drive.amplitude,
+    out = res.as_dict() | {"omega0": scene.drive.mean_speed, "amplitude": scene.drive.swing,
                            "N": scene.numerics.N,
                            "effects": ",".join(scene.effects.active())} | out  # fmt: skip
     prop = None

@@ -136,6 +136,16 @@ def dest(section: str, name: str) -> str:
     return f"{section}__{name}"
 
 
+#: scene fields a command cannot do without (for the drives that read them): their help says
+#: so instead of showing the registry's default, which the Python API uses
+REQUIRED = {
+    ("drive", "omega0"): "required for a sine or harmonics drive, here or in --scene; a "
+    "profile or a move has its own speeds; a finite number",
+    ("drive", "f_d"): "required for a periodic drive, here or in --scene; a move has none; a "
+    "number > 0",
+}
+
+
 def add_field(p: argparse.ArgumentParser, section: str, name: str, **kwargs: Any) -> None:
     """One flag for the registry field section.name: its type, help (unit, default, range);
     default None (unset: the scene file's value or the registry's default).
@@ -153,7 +163,8 @@ def add_field(p: argparse.ArgumentParser, section: str, name: str, **kwargs: Any
     """
     entry = param(section, name)
     flag = flag_name(section, name)
-    common = {"dest": dest(section, name), "default": None, "help": help_text(section, name)}
+    common = {"dest": dest(section, name), "default": None,
+              "help": kwargs.pop("help", None) or help_text(section, name)}  # fmt: skip
     if entry.kind == "bool":
         p.add_argument(flag, action=argparse.BooleanOptionalAction, **common, **kwargs)
     elif entry.kind == "choice":
@@ -179,7 +190,11 @@ def add_section(p: argparse.ArgumentParser, section: str, skip: tuple[str, ...] 
     group = p.add_argument_group(f"{section} (scene section; a --scene file's values unless set)")
     for name, entry in SECTIONS[section].items():
         if name not in skip and entry.kind != "data":  # structured: `add_drive_flags`
-            add_field(group, section, name)  # type: ignore[arg-type]
+            extra = {}
+            if (section, name) in REQUIRED:
+                unit = f" [{entry.unit}]" if entry.unit else ""
+                extra["help"] = f"{entry.help}{unit} ({REQUIRED[section, name]})"
+            add_field(group, section, name, **extra)  # type: ignore[arg-type]
 
 
 def add_drive_flags(p: argparse.ArgumentParser, move: bool = True) -> None:
@@ -206,7 +221,7 @@ def add_drive_flags(p: argparse.ArgumentParser, move: bool = True) -> None:
         p.add_argument(
             "--move",
             help="a single move: a CSV file with columns t [s] and omega [rad/s]; the beam "
-            "starts in the quasi-static state of its first sample",
+            "starts at rest in the static state of its first speed (see --move-start)",
         )
 
 
@@ -380,8 +395,8 @@ def scene_request(args: argparse.Namespace, needs: tuple[str, ...] = ("omega0", 
         missing.
     """
     from ..config.scenefile import auto_tol, load_scene_file, scene_sections, split_auto
-    from ..model.params import Effects
-    from ..runs.scene import build_scene
+    from ..model.params import DRIVE_FIELDS, Effects
+    from ..runs.scene import build_scene, drive_kind
 
     raw = dict(load_scene_file(args.scene)) if args.scene else {}
     section = raw.pop("uncertainty", None)
@@ -391,15 +406,9 @@ def scene_request(args: argparse.Namespace, needs: tuple[str, ...] = ("omega0", 
     for s, values in flags.items():
         spec.setdefault(s, {}).update(values)
     drive = spec.setdefault("drive", {})
-    if getattr(args, "harmonics", None):
-        drive["harmonics"] = harmonics_flag(args.harmonics)
-        if "amplitude" not in flags.get("drive", {}):  # the file's amplitude gives way
-            drive.pop("amplitude", None)
-    for key in ("profile", "move"):  # a flag's file is relative to where the command runs
-        if getattr(args, key, None):
-            drive[key] = str(Path(getattr(args, key)).resolve())
-    if drive.get("move") is not None:  # a move has its own speeds and no repetition rate
-        needs = tuple(k for k in needs if k not in ("omega0", "f_d"))
+    _drive_flags(args, drive, flags.get("drive", {}))
+    kind = drive_kind(drive)
+    needs = tuple(k for k in needs if k in DRIVE_FIELDS[kind])
     tol = None
     text = args.effects or ""
     if text == "auto" or text.startswith("auto:"):
@@ -423,6 +432,34 @@ def scene_request(args: argparse.Namespace, needs: tuple[str, ...] = ("omega0", 
         inputs = read_inputs(section, args.uncertainty, f"scene file {args.scene!r}")
         scene = at_means(scene, inputs)
     return scene, tol, inputs
+
+
+#: the flags that set a drive's kind, and the scene key each fills
+KIND_FLAGS = ("harmonics", "profile", "move")
+
+
+def _drive_flags(args: argparse.Namespace, drive: dict[str, Any], flagged: dict) -> None:
+    """Put --harmonics, --profile and --move into the drive section.  A flag's kind replaces
+    the --scene file's: the file's keys that the flag's kind does not read give way (a flag's
+    own values stay, and are refused if the kind does not read them)."""
+    from ..model.params import DRIVE_FIELDS
+
+    given = [k for k in KIND_FLAGS if getattr(args, k, None)]
+    if not given:
+        return
+    if len(given) > 1:
+        raise RotbeamInputError(
+            f"--{' and --'.join(given)} given together; allowed: one of --harmonics, --profile, "
+            f"--move"
+        )
+    kind = given[0]
+    for key in [*KIND_FLAGS, "omega0", "amplitude", "f_d", "settle", "move_start"]:
+        if key not in DRIVE_FIELDS[kind] and key not in flagged:
+            drive.pop(key, None)
+    if kind == "harmonics":
+        drive["harmonics"] = harmonics_flag(args.harmonics)
+    else:  # a flag's file is relative to where the command runs
+        drive[kind] = str(Path(getattr(args, kind)).resolve())
 
 
 def add_uncertainty_flags(p: argparse.ArgumentParser) -> None:

@@ -151,7 +151,15 @@ def _run_move(args: argparse.Namespace, scene, threshold: float, tol, inputs) ->
     from ..analysis.verdict import judge_move
     from ..runs.move import simulate_move
 
-    res = simulate_move(scene)
+    with bar(args, "move and settling", "ms") as b:
+        reached = [0]
+
+        def advanced(done_s: float, planned_s: float) -> None:
+            b.total = round(1e3 * planned_s)  # the settling window ends early once calm
+            b.update(round(1e3 * done_s) - reached[0])
+            reached[0] = round(1e3 * done_s)
+
+        res = simulate_move(scene, progress=advanced)
     verdict = judge_move(res, threshold)
     summary = res.summary() | verdict.as_dict()
     if args.out:

@@ -119,7 +119,7 @@ def run(args: argparse.Namespace) -> int:
     rows = table.to_dict(orient="records")
     ok = line.complete and all(r["converged"] for r in rows)
     if args.json:
-        show.as_json({"omega0": scene.drive.omega0, "f0_hz": _first(rows, "f0_hz"),
+        show.as_json({"omega0": scene.drive.mean_speed, "f0_hz": _first(rows, "f0_hz"),
                       "points": line.points, "ran": len(rows), "complete": line.complete,
                       "message": line.message, "seconds": line.seconds,
                       "rows": rows})  # fmt: skip

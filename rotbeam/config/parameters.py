@@ -91,6 +91,14 @@ SECTIONS: dict[str, dict[str, Param]] = {
             lo_open=True,
             optional=True,
         ),  # fmt: skip
+        "move_start": _choice(
+            "rest",
+            "how the beam starts a move: at rest in the static state of the first speed, or "
+            "(quasistatic) in the quasi-static state and rate of the first sample, a move that "
+            "continues a motion",
+            "rest",
+            "quasistatic",
+        ),  # fmt: skip
     },
     "effects": {
         "centrifugal": _bool(True, "centrifugal load C (1 - delta + delta x)"),

@@ -287,6 +287,34 @@ class HarmonicLaw(DriveLaw):
         """
         return replace(self, terms=tuple((k, a * factor, ph) for k, a, ph in self.terms))
 
+    def dense(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """The law sampled at DENSE equispaced instants of one period, summed as arrays.
+
+        Returns
+        -------
+        tau, lam, lam_dot : numpy.ndarray
+            Instants (units of T) from 0, and lam, lam_dot there; shape (DENSE,) each.
+        """
+        tau = np.arange(DENSE) * (self.period / DENSE)
+        lam = np.full(DENSE, float(self.lam0))
+        lam_dot = np.zeros(DENSE)
+        for k, a, ph in self.terms:
+            arg = k * self.omega * tau + ph
+            lam += a * np.sin(arg)
+            lam_dot += a * (k * self.omega) * np.cos(arg)
+        return tau, lam, lam_dot
+
+    @property
+    def highest_harmonic(self) -> int:
+        """The largest k of the terms of nonzero amplitude: exact, no sampling.
+
+        Returns
+        -------
+        int
+            k >= 1, or 0 for a constant law.
+        """
+        return max((k for k, a, _ in self.terms if a != 0.0), default=0)
+
     @property
     def swing(self) -> float:
         """sum_k |alpha_k|: the largest |lam - lam0| can be."""

@@ -13,6 +13,7 @@ import numpy as np
 import scipy.linalg as sla
 
 from ..config.errors import RotbeamInputError
+from ..config.threads import one_blas_thread
 from .base import DiscreteModel
 from .elastica import DiscreteElastica
 from .params import Beam, Dimensionless, Effects
@@ -145,6 +146,7 @@ def dimensionless_frequencies(
     return linear_frequencies(model, lam, n_modes)
 
 
+@one_blas_thread
 def modes(
     beam: Beam, omega: float = 0.0, n_modes: int = 1, N: int = 40, softening: bool = True
 ) -> np.ndarray:

@@ -416,6 +416,46 @@ class Samples:
             )
 
 
+#: the drive fields each kind of drive reads (the others are refused: `unused_drive_field`)
+DRIVE_FIELDS = {
+    "sine": ("omega0", "amplitude", "f_d"),
+    "harmonics": ("omega0", "f_d", "harmonics"),
+    "profile": ("f_d", "profile"),
+    "move": ("move", "settle", "move_start"),
+}
+#: why a kind of drive does not read a field, for the one-line refusal
+_UNUSED_WHY = {
+    "omega0": "its speeds are its own; tables report its mean speed as omega0",
+    "amplitude": "its swing is its own",
+    "f_d": "a single move has no repetition rate",
+    "move_start": "only a move starts from rest",
+    "harmonics": "the harmonics replace the amplitude",
+}
+
+
+def unused_drive_field(kind: str, name: str, value: object) -> RotbeamInputError:
+    """The one-line error for a drive field that the drive's kind does not read.
+
+    Parameters
+    ----------
+    kind : str
+        The drive's kind: "sine", "harmonics", "profile" or "move".
+    name : str
+        The field given.
+    value : object
+        Its value, shown in the message.
+
+    Returns
+    -------
+    RotbeamInputError
+        "drive.NAME = VALUE: a KIND drive does not read it (why); allowed: ...".
+    """
+    return RotbeamInputError(
+        f"drive.{name} = {value!r}: a {kind} drive does not read it ({_UNUSED_WHY[name]}); "
+        f"allowed with a {kind}: {', '.join(DRIVE_FIELDS[kind])}"
+    )
+
+
 @dataclass(frozen=True)
 class Drive:
     """How the disk turns: Omega(t) [rad/s].
@@ -440,6 +480,8 @@ class Drive:
     profile: Samples | None = default("drive", "profile")  #: one sampled period (phase, Omega)
     move: Samples | None = default("drive", "move")  #: a single move (t [s], Omega)
     settle: float | None = default("drive", "settle")  #: after a move [s]; None: until calm
+    #: how a move starts: "rest" (static at its first speed) or "quasistatic" (moving)
+    move_start: str = default("drive", "move_start")
 
     def __post_init__(self) -> None:
         check_fields(self, "drive")
@@ -461,6 +503,10 @@ class Drive:
                 raise RotbeamInputError(f"drive.{name}: samples of a {value.kind}, not a {kind}")
         if self.settle is not None and self.move is None:
             raise RotbeamInputError(f"drive.settle = {self.settle!r}: only a move settles")
+        for name in ("omega0", "amplitude", "f_d", "move_start"):
+            value = getattr(self, name)
+            if name not in DRIVE_FIELDS[self.kind] and value != default("drive", name):
+                raise unused_drive_field(self.kind, name, value)
 
     @property
     def kind(self) -> str:
@@ -479,6 +525,24 @@ class Drive:
     def terms(self) -> tuple[Harmonic, ...]:
         """The harmonics of a harmonic drive (the sine: one, k = 1, `amplitude`)."""
         return self.harmonics or (Harmonic(1, self.amplitude, 0.0),)
+
+    @property
+    def mean_speed(self) -> float:
+        """The mean angular velocity [rad/s]: Omega_0 for the sine and harmonics, the period
+        mean of a profile, the time mean over a move (what tables report as omega0)."""
+        if self.kind in ("sine", "harmonics"):
+            return self.omega0
+        return self.law(1.0).mean
+
+    @property
+    def swing(self) -> float:
+        """The largest |Omega - mean_speed| [rad/s]: a for the sine (what tables report as
+        amplitude)."""
+        if self.kind == "sine":
+            return self.amplitude
+        law = self.law(1.0)
+        mean = self.mean_speed
+        return float(np.max(np.abs(law.dense()[1] - mean)))
 
     def law(self, T: float) -> DriveLaw:
         """The drive in the model's units: lam(tau) = Omega(tau T) T.

@@ -1,23 +1,26 @@
 """A single move: the beam time-stepped through it and a settling window after it.
 
-The beam starts from the quasi-static state at the move's first sample and runs beside its
-quasi-static twin.  The answers: peaks, RMS and Delta RMS over the move, the residual vibration
-after it and how long that takes to settle (definitions: docs/model.md, "Drives").
+The beam starts at rest (or, with `drive.move_start: quasistatic`, in the quasi-static state of
+the move's first sample) and runs beside its quasi-static twin.  The answers: peaks, RMS and
+Delta RMS over the move, the residual vibration after it and how long that takes to settle
+(definitions: docs/model.md, "Drives").
 """
 
 from __future__ import annotations
 
 import math
 import time
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
 from ..config.errors import RotbeamInputError
+from ..config.threads import one_blas_thread
 from ..model.criterion import delta_rms, rms
 from ..model.modes import resonance_frequency_hz
-from ..solve.quasistatic import quasistatic_series
+from ..solve.quasistatic import quasistatic_series, solve_static
 from ..solve.system import FirstOrderSystem, OutOfTime
 from .scene import Scene
 
@@ -30,6 +33,8 @@ SETTLED = 0.05
 #: samples of y_m per first-mode period (and at least MOVE_SAMPLES over the move)
 PER_PERIOD = 32
 MOVE_SAMPLES = 512
+#: the move is integrated in this many windows, each reported to `progress`
+MOVE_WINDOWS = 20
 
 
 @dataclass
@@ -92,13 +97,20 @@ class MoveResult:
                 "y_m_quasistatic": self.y_quasistatic}  # fmt: skip
 
 
-def simulate_move(scene: Scene) -> MoveResult:
+@one_blas_thread
+def simulate_move(
+    scene: Scene, progress: Callable[[float, float], None] | None = None
+) -> MoveResult:
     """Time-step a scene whose drive is a `move` through it and a settling window after it.
 
     A move has no periodic steady state, so this replaces `rotbeam.runs.scene.simulate` for
-    it.  The beam starts in the quasi-static state of the move's first sample (its rate from the
-    quasi-static series); Radau with the exact Jacobian at numerics.rtol samples y_m PER_PERIOD
-    times per first-mode period (at least MOVE_SAMPLES over the move); after the move the disk
+    it.  The beam starts at rest before the move: in the static state of the first sample's
+    speed (the centrifugal load alone; the straight beam for a radial clamp) with zero rates,
+    the move's dOmega/dt acting from t = 0 (`drive.move_start: quasistatic` starts it instead in
+    the quasi-static state of the first sample, its rate from the quasi-static series: a move
+    that continues a motion the beam followed quasi-statically).  Radau with the exact Jacobian
+    at numerics.rtol, in MOVE_WINDOWS windows, samples y_m PER_PERIOD times per first-mode
+    period (at least MOVE_SAMPLES over the move); after the move the disk
     turns at its last speed for `drive.settle` seconds or, without it, first-mode periods until
     |y_m| over one stays below CALM of the peak (at most SETTLE_PERIODS).  The wall time is
     bounded by numerics.max_seconds; a run cut short says so in `converged` and `message`.
@@ -107,6 +119,9 @@ def simulate_move(scene: Scene) -> MoveResult:
     ----------
     scene : Scene
         Beam, a drive with a `move`, effects, numerics.
+    progress : callable or None
+        progress(done_s, planned_s) after every window integrated: seconds of the move and of
+        the settling window done, and planned (the settling window's longest).
 
     Returns
     -------
@@ -133,11 +148,19 @@ def simulate_move(scene: Scene) -> MoveResult:
     steps = max(MOVE_SAMPLES, math.ceil(law.duration / dt))
     taus = np.arange(steps) * (law.duration / steps)
     theta_qs = quasistatic_series(model, taus)
-    z = _starting_state(model, taus, theta_qs)
+    if scene.drive.move_start == "quasistatic":
+        z = _moving_state(taus, theta_qs)
+    else:
+        z = _resting_state(model, law.lam(0.0))
     system = FirstOrderSystem(model, t0 + scene.numerics.max_seconds)
     w1 = 2.0 * math.pi * f1_max * T
-    run = _Stepper(system, scene.numerics.rtol, float(np.max(np.abs(theta_qs))) or 1e-6, w1)
-    ok, message = run.through(z, taus, law.duration)
+    scale = float(np.max(np.abs(theta_qs))) or 1e-6
+    run = _Stepper(system, scene.numerics.rtol, scale, w1, _reporter(progress, scene, law, f1_end))
+    ok, message = True, "through the move"
+    for end in law.duration * np.arange(1, MOVE_WINDOWS + 1) / MOVE_WINDOWS:
+        ok, message = run.through(run.z if run.z is not None else z, taus, float(end))
+        if not ok:
+            break
     y_qs = np.atleast_1d(model.midspan(theta_qs))
     peak = float(np.max(np.abs(run.y(model)))) if run.samples else math.nan
     settle_s = 0.0
@@ -174,18 +197,46 @@ def simulate_move(scene: Scene) -> MoveResult:
     )
 
 
-def _starting_state(model, taus: np.ndarray, theta_qs: np.ndarray) -> np.ndarray:
+def _resting_state(model, lam: float) -> np.ndarray:
+    """(Theta, 0): the static state under the centrifugal load of a steady speed lam, at rest."""
+    res = solve_static(model, lam, 0.0)
+    if not res.converged:
+        raise RotbeamInputError(
+            f"drive.move: no static state of the beam at the move's first speed "
+            f"(Omega T = {lam:.4g}): {res.message}"
+        )
+    return np.concatenate([res.theta, np.zeros(model.n)])
+
+
+def _moving_state(taus: np.ndarray, theta_qs: np.ndarray) -> np.ndarray:
     """(Theta, Theta_t) of the quasi-static state at the first sample (its rate by a one-sided
-    difference of the quasi-static series)."""
+    difference of the quasi-static series): `move_start: quasistatic`."""
     rate = (theta_qs[:, 1] - theta_qs[:, 0]) / (taus[1] - taus[0])
     return np.concatenate([theta_qs[:, 0], rate])
+
+
+def _reporter(progress, scene: Scene, law, f1_end: float) -> Callable[[float], None] | None:
+    """progress(done_s, planned_s) from the stepper's time reached [units of T]."""
+    if progress is None:
+        return None
+    T = scene.beam.T
+    after = scene.drive.settle if scene.drive.settle is not None else SETTLE_PERIODS / f1_end
+    planned = law.duration * T + after
+    return lambda tau: progress(tau * T, planned)
 
 
 class _Stepper:
     """Radau over consecutive windows, keeping the samples and the state at each window's end."""
 
-    def __init__(self, system: FirstOrderSystem, rtol: float, scale: float, rate: float) -> None:
-        self.system, self.rtol = system, rtol
+    def __init__(
+        self,
+        system: FirstOrderSystem,
+        rtol: float,
+        scale: float,
+        rate: float,
+        report: Callable[[float], None] | None = None,
+    ) -> None:
+        self.system, self.rtol, self.report = system, rtol, report
         n = system.n
         a = 1e-3 * rtol * scale  # the angles' scale is the quasi-static response's, the rates'
         self.atol = np.concatenate([np.full(n, a), np.full(n, a * rate)])  # times w1
@@ -215,6 +266,8 @@ class _Stepper:
         self.times += list(sol.t[:-1])
         self.samples += list(sol.y[: s.n, :-1].T)
         self.z, self.tau = sol.y[:, -1], t_end
+        if self.report is not None:
+            self.report(t_end)
         return True, "through the move"
 
     def y(self, model) -> np.ndarray:

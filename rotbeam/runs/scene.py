@@ -19,11 +19,13 @@ import numpy as np
 from ..config.checks import check_finite
 from ..config.errors import RotbeamInputError
 from ..config.scenefile import read_columns, scene_sections
+from ..config.threads import one_blas_thread
 from ..model.base import DiscreteModel
 from ..model.criterion import delta_rms, rms
 from ..model.drive import PROFILE_SHAPES, profile_samples
 from ..model.elastica import DiscreteElastica
 from ..model.params import (
+    DRIVE_FIELDS,
     Beam,
     Dimensionless,
     Drive,
@@ -32,13 +34,15 @@ from ..model.params import (
     Samples,
     check_model_range,
     drive_groups,
+    unused_drive_field,
 )
 from ..solve.extrapolation import richardson
 from ..solve.floquet import VERDICT_ONLY
 from ..solve.numerics import Numerics
 from ..solve.periodic import Neighbour
 from ..solve.quasistatic import quasistatic_series
-from ..solve.steady import SteadyState, steady_state
+from ..solve.spectral import trig_interpolate
+from ..solve.steady import SteadyState, steady_state, window_samples
 from ..solve.timebudget import TimeBudget
 
 CLASSES = {"beam": Beam, "drive": Drive, "effects": Effects, "numerics": Numerics}
@@ -171,6 +175,10 @@ def drive_of(values: dict[str, Any], base: Path) -> Drive:
         shape, a bad named shape, or a bad file (`rotbeam.config.scenefile.read_columns`).
     """
     values = dict(values)
+    kind = drive_kind(values)
+    for name in ("omega0", "amplitude", "f_d", "move_start"):
+        if name in values and name not in DRIVE_FIELDS[kind] and kind != "harmonics":
+            raise unused_drive_field(kind, name, values[name])
     if "harmonics" in values and "amplitude" in values:
         raise RotbeamInputError(
             "drive: amplitude and harmonics given together; allowed: one of them (harmonics "
@@ -202,6 +210,25 @@ def drive_of(values: dict[str, Any], base: Path) -> Drive:
         data = read_columns(base / value, columns, f"drive.{key}")
         values[key] = Samples(data[columns[0]], data["omega"], key, str(value), keep)
     return Drive(**values)
+
+
+def drive_kind(values: dict[str, Any]) -> str:
+    """The kind of drive a drive section asks for, from its keys.
+
+    Parameters
+    ----------
+    values : dict
+        A drive section (unchecked).
+
+    Returns
+    -------
+    str
+        "move", "profile" or "harmonics" where that key holds a value, else "sine".
+    """
+    for name in ("move", "profile", "harmonics"):
+        if values.get(name):
+            return name
+    return "sine"
 
 
 def _harmonics(items: Any) -> tuple[Harmonic, ...]:
@@ -333,8 +360,8 @@ class SceneResult:
             "transient_bound": self.dynamic.transient,
             "nfev": self.dynamic.nfev,
             "f_n_hz": beam.f_n,
-            "omega0": drive.omega0,
-            "amplitude": drive.amplitude,
+            "omega0": drive.mean_speed,
+            "amplitude": drive.swing,
             "f_d": drive.f_d,
             "N": self.scene.numerics.N,
             "method": self.scene.numerics.method,
@@ -412,6 +439,7 @@ def quasistatic_midspan(model: DiscreteModel, taus: np.ndarray) -> tuple[np.ndar
 EXTRAPOLATION_MAX_CHANGE = 0.1
 
 
+@one_blas_thread
 def simulate(
     scene: Scene,
     progress: Callable[[int, float], None] | None = None,

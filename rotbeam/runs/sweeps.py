@@ -13,6 +13,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ..config.errors import RotbeamInputError
+from ..config.threads import one_blas_thread
 from ..model.modes import resonance_frequency_hz
 from ..model.params import Beam, Drive, Effects, drive_groups
 from ..solve.numerics import Numerics
@@ -89,6 +90,7 @@ class Sweep:
         return self.cut_at is None
 
 
+@one_blas_thread
 def sweep(
     scene: Scene,
     f_ds: Sequence[float],
@@ -161,8 +163,7 @@ def _run_point(
 ) -> tuple[dict, Neighbour | None]:
     """One point's row, and the neighbour the next point starts from (None after a failure)."""
     beam, drive = scene.beam, scene.drive
-    row = {"omega0": drive.omega0, "f_d": drive.f_d,
-           "amplitude": drive.amplitude if drive.kind == "sine" else math.nan,
+    row = {"omega0": drive.mean_speed, "f_d": drive.f_d, "amplitude": drive.swing,
            "f0_hz": f0, "f_n_hz": beam.f_n, "N": scene.numerics.N}  # fmt: skip
     row.update(drive_groups(beam, drive))
     t0 = time.perf_counter()
@@ -203,6 +204,7 @@ def _frame(rows: list[dict]) -> pandas.DataFrame:
     return pd.DataFrame(rows, columns=COLUMNS)
 
 
+@one_blas_thread
 def scan_line(
     beam: Beam,
     omega0: float,
@@ -246,6 +248,7 @@ def scan_line(
     return line_sweep(beam, omega0, f_ds, amplitude, effects, numerics, log).rows
 
 
+@one_blas_thread
 def line_sweep(
     beam: Beam,
     omega0: float,
