@@ -19,6 +19,7 @@ import numpy as np
 
 from ..config.checks import check_threshold
 from ..config.errors import RotbeamInputError
+from ..config.threads import one_blas_thread
 from ..model.modes import damping_ratio, resonance_frequency_hz
 from ..model.params import Drive
 from ..model.secondorder import c0_root, delta_rms_harmonics, first_crossing
@@ -357,6 +358,7 @@ def _start(scene: Scene, threshold: float) -> tuple[float, float]:
     return f0, ratio * f0
 
 
+@one_blas_thread
 def critical(
     scene: Scene,
     threshold: float = 0.10,
