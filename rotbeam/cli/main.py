@@ -75,7 +75,8 @@ def main(argv: list[str] | None = None) -> int:
     Returns
     -------
     int
-        0 done, 1 no answer or a rejected fit, 2 bad input, 130 interrupted.
+        0 done, 1 no answer (a scene whose loads fold the beam) or a rejected fit, 2 bad input,
+        130 interrupted.
 
     Raises
     ------
@@ -85,6 +86,7 @@ def main(argv: list[str] | None = None) -> int:
     """
     args = build_parser().parse_args(argv)
     run = importlib.import_module(f".{COMMANDS[args.command]}", __package__).run
+    from ..solve.quasistatic import QuasiStaticError
     from .damping import FitRejected
 
     try:
@@ -92,6 +94,9 @@ def main(argv: list[str] | None = None) -> int:
     except RotbeamInputError as exc:
         print(f"rotbeam: error: {options.named_flag(str(exc), args)}", file=sys.stderr)
         return options.EXIT_USAGE
+    except QuasiStaticError as exc:  # no equilibrium: the scene's loads fold the beam
+        print(f"rotbeam: no answer: {exc}", file=sys.stderr)
+        return EXIT_REJECTED
     except FitRejected as exc:
         print(f"rotbeam: fit rejected: {exc}", file=sys.stderr)
         return EXIT_REJECTED

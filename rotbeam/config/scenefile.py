@@ -218,10 +218,15 @@ def load_scene_file(path: str | Path) -> dict[str, Any]:
         the line and column) or does not hold a mapping.
     """
     path = Path(path)
+    if path.is_dir():
+        raise RotbeamInputError(
+            f"scene file {str(path)!r} is a directory; allowed: a YAML file (sections "
+            f"{', '.join(SECTIONS)})"
+        )
     if not path.is_file():
         raise RotbeamInputError(f"scene file {str(path)!r} does not exist")
     try:
-        data = load_yaml(path.read_text())
+        data = load_yaml(path.read_text(encoding="utf-8-sig"))
     except yaml.YAMLError as exc:
         mark = getattr(exc, "problem_mark", None)
         where = f" (line {mark.line + 1}, column {mark.column + 1})" if mark else ""
@@ -267,10 +272,12 @@ def read_columns(path: str | Path, columns: tuple[str, ...], where: str) -> dict
     import csv
 
     path = Path(path)
+    if path.is_dir():
+        raise RotbeamInputError(f"{where} = {str(path)!r} is a directory; allowed: a CSV file")
     if not path.is_file():
         raise RotbeamInputError(f"{where} = {str(path)!r}: no such file")
-    try:
-        with path.open(newline="") as f:
+    try:  # utf-8-sig: a spreadsheet's byte-order mark is not part of the first column's name
+        with path.open(newline="", encoding="utf-8-sig") as f:
             rows = list(csv.reader(f))
     except (OSError, UnicodeDecodeError) as exc:
         raise RotbeamInputError(f"{where} = {str(path)!r} cannot be read: {exc}") from None

@@ -381,15 +381,16 @@ class Samples:
         bad = np.flatnonzero(~(np.isfinite(x) & np.isfinite(w)))
         if bad.size:
             raise RotbeamInputError(
-                f"{where}: sample {bad[0]} is not a finite number (x = {x[bad[0]]!r}, "
-                f"omega = {w[bad[0]]!r})"
+                f"{where}: sample {bad[0]} is not a finite number (x = {float(x[bad[0]])!r}, "
+                f"omega = {float(w[bad[0]])!r})"
             )
         back = np.flatnonzero(np.diff(x) <= 0)
         if back.size:
             name = "phase" if self.kind == "profile" else "t"
             raise RotbeamInputError(
                 f"{where}: {name} does not increase at sample {back[0] + 1} "
-                f"({x[back[0]]!r} then {x[back[0] + 1]!r}); allowed: strictly increasing"
+                f"({float(x[back[0]])!r} then {float(x[back[0] + 1])!r}); allowed: strictly "
+                f"increasing"
             )
         if self.kind == "profile":
             self._check_period(where, x, w)
@@ -921,14 +922,75 @@ def drive_groups(beam: Beam, drive: Drive) -> dict[str, float]:
 C_MAX_LIMIT = 1e12
 E_MAX_LIMIT = 1e12
 FD_OVER_FN_LIMIT = 1e6
+#: The largest axial strain the centrifugal tension may put at the clamp: beyond it the beam
+#: would stretch past twice its length, which no beam theory (and no material) follows.  The
+#: paper's scenes reach 14 % (C_max = 787); a unit slip (E in GPa written as Pa) reaches 10^3.
+CLAMP_STRAIN_LIMIT = 1.0
+
+
+def clamp_strain(beam: Beam, omega: float) -> float:
+    """The axial strain of the centrifugal tension at the clamp of the straight beam, to first
+    order: eps(0) = Omega^2 [rho (R_o L + L^2 / 2) + m_tip R / A] / E.
+
+    N(0) = rho A Omega^2 int_0^L (R_o + x) dx + m_tip Omega^2 R, over EA (docs/model.md, "Axial
+    stretching"); what the inextensible model neglects, and what tells a physically impossible
+    scene from a stiff one.
+
+    Parameters
+    ----------
+    beam : Beam
+        The beam and its payload.
+    omega : float
+        Angular velocity [rad/s].
+
+    Returns
+    -------
+    float
+        eps(0), dimensionless.
+    """
+    pull = beam.rho * (beam.R_o * beam.L + 0.5 * beam.L**2) + beam.tip_mass * beam.R / beam.A
+    return omega * omega * pull / beam.E
+
+
+def unit_hint(beam: Beam) -> str:
+    """A likely unit slip in a beam's fields, for the message that refuses its scene.
+
+    Parameters
+    ----------
+    beam : Beam
+        The beam.
+
+    Returns
+    -------
+    str
+        E.g. "; beam.E = 200 Pa is softer than any solid beam (the paper's elastomer: 1.22e6
+        Pa): 200 GPa is 2e+11 Pa", or "" where every field is in a usual range.
+    """
+    hints = []
+    if beam.E < 1e4:
+        hints.append(
+            f"beam.E = {beam.E:g} Pa is softer than any solid beam (the paper's elastomer: "
+            f"1.22e6 Pa): {beam.E:g} GPa is {beam.E * 1e9:g} Pa, {beam.E:g} MPa {beam.E * 1e6:g} Pa"
+        )
+    if beam.rho < 50.0:
+        hints.append(
+            f"beam.rho = {beam.rho:g} kg/m^3 is lighter than any solid: {beam.rho:g} g/cm^3 is "
+            f"{beam.rho * 1e3:g} kg/m^3"
+        )
+    for name in ("L", "h", "b", "R"):
+        value = getattr(beam, name)
+        if value > 10.0:
+            hints.append(f"beam.{name} = {value:g} m: {value:g} mm is {value * 1e-3:g} m")
+    return "; check the units: " + "; ".join(hints) if hints else ""
 
 
 def check_model_range(beam: Beam, drive: Drive) -> None:
     """Refuse a scene outside the model's range, with one line naming the drive (and G, f_n).
 
-    The range is C_max <= C_MAX_LIMIT, E_max <= E_MAX_LIMIT and f_d <= FD_OVER_FN_LIMIT f_n
-    (far beyond the paper's scenes), with C_max and E_max from the drive's largest Omega and
-    dOmega/dt.
+    The range is C_max <= C_MAX_LIMIT, E_max <= E_MAX_LIMIT, a clamp strain of the centrifugal
+    tension up to CLAMP_STRAIN_LIMIT (`clamp_strain`) and f_d <= FD_OVER_FN_LIMIT f_n (far
+    beyond the paper's scenes), with C_max and E_max from the drive's largest Omega and
+    dOmega/dt; a message names a likely unit slip (`unit_hint`).
 
     Parameters
     ----------
@@ -940,7 +1002,7 @@ def check_model_range(beam: Beam, drive: Drive) -> None:
     Raises
     ------
     RotbeamInputError
-        If C_max, E_max or f_d / f_n exceeds its limit.
+        If C_max, E_max, the clamp strain or f_d / f_n exceeds its limit.
     """
     G = beam.G
     w = drive.omega_max
@@ -950,10 +1012,18 @@ def check_model_range(beam: Beam, drive: Drive) -> None:
     what = f"the {drive.kind} drive's largest speed {w:.4g} rad/s"
     if drive.kind == "sine":
         what = f"drive.omega0 = {drive.omega0!r}, drive.amplitude = {drive.amplitude!r}"
+    hint = unit_hint(beam)
     if not c_max <= C_MAX_LIMIT:
         raise RotbeamInputError(
             f"C_max = G max Omega^2 = {c_max:.3g} from {what}, G = {G:.3g} s^2 (beam); "
-            f"allowed: C_max <= {C_MAX_LIMIT:g}"
+            f"allowed: C_max <= {C_MAX_LIMIT:g}{hint}"
+        )
+    strain = clamp_strain(beam, w)
+    if not strain <= CLAMP_STRAIN_LIMIT:
+        raise RotbeamInputError(
+            f"the centrifugal tension would stretch the beam by {100 * strain:.3g} % at its "
+            f"clamp (C_max = {c_max:.3g} from {what}): no beam holds that; allowed: a clamp "
+            f"strain up to {100 * CLAMP_STRAIN_LIMIT:g} %{hint}"
         )
     if not e_max <= E_MAX_LIMIT:
         accel = f"drive.amplitude = {drive.amplitude!r}, drive.f_d = {drive.f_d!r}"
@@ -962,7 +1032,7 @@ def check_model_range(beam: Beam, drive: Drive) -> None:
                      f"{drive.omega_dot_max:.4g} rad/s^2")  # fmt: skip
         raise RotbeamInputError(
             f"E_max = G max |dOmega/dt| = {e_max:.3g} from {accel}, G = {G:.3g} s^2 (beam); "
-            f"allowed: E_max <= {E_MAX_LIMIT:g}"
+            f"allowed: E_max <= {E_MAX_LIMIT:g}{hint}"
         )
     if not ratio <= FD_OVER_FN_LIMIT:
         raise RotbeamInputError(

@@ -196,9 +196,10 @@ def _loads(orders: np.ndarray | tuple, loads: np.ndarray | tuple) -> tuple[np.nd
             f"harmonic orders must be finite and > 0 and loads finite, got orders "
             f"{k.tolist()} and loads {f.tolist()}"
         )
-    w = f * f
-    if not np.any(w > 0):
+    top = float(np.max(np.abs(f)))
+    if not top > 0:
         raise RotbeamInputError("every load is 0: Delta RMS is undefined without a load")
+    w = (f / top) ** 2  # only the ratios matter: scaled, a tiny load does not underflow
     return k[w > 0], w[w > 0]
 
 

@@ -20,9 +20,9 @@ from ..config.errors import RotbeamInputError
 from ..config.threads import one_blas_thread
 from ..model.criterion import delta_rms, rms
 from ..model.modes import resonance_frequency_hz
-from ..solve.quasistatic import quasistatic_series, solve_static
+from ..solve.quasistatic import QuasiStaticError, quasistatic_series, solve_static
 from ..solve.system import FirstOrderSystem, OutOfTime
-from .scene import Scene
+from .scene import Scene, folded
 
 #: without `settle`: integrate first-mode periods after the move until |y_m| over one of them
 #: stays below this share of the peak, at most SETTLE_PERIODS of them
@@ -147,7 +147,10 @@ def simulate_move(
     dt = 1.0 / (PER_PERIOD * f1_max) / T  # sample step [units of T]
     steps = max(MOVE_SAMPLES, math.ceil(law.duration / dt))
     taus = np.arange(steps) * (law.duration / steps)
-    theta_qs = quasistatic_series(model, taus)
+    try:
+        theta_qs = quasistatic_series(model, taus)
+    except QuasiStaticError as exc:
+        raise folded(scene, exc) from None
     if scene.drive.move_start == "quasistatic":
         z = _moving_state(taus, theta_qs)
     else:
