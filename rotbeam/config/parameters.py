@@ -118,7 +118,12 @@ SECTIONS: dict[str, dict[str, Param]] = {
             1e-3, "steady-state tolerance (relative remaining transient)", "", 1e-10, 0.5
         ),  # fmt: skip
         "rms_periods": _int(1, "whole drive periods in the RMS window", 1),
-        "samples_per_period": _int(64, "samples of y_m per drive period", 8),
+        "samples_per_period": _int(
+            64,
+            "samples of y_m per drive period, at least: where 4 K exceeds it, K the highest "
+            "harmonic of the drive or of the collocated orbit, 4 K rounded up to a power of two",
+            8,
+        ),  # fmt: skip
         "max_periods": _int(2000, "give up after this many periods", 2),
         "max_tau": _real(2000.0, "... or after this much dimensionless time", "", 0, lo_open=True),
         "max_seconds": _real(

@@ -162,6 +162,20 @@ class DriveLaw(ABC):
         """The largest |lam_dot| over the period."""
         return float(np.max(np.abs(self.dense()[2])))
 
+    @property
+    def highest_harmonic(self) -> int:
+        """The highest harmonic of the period the law carries above round-off (of its DENSE
+        samples' spectrum): what a sampling of the period must resolve.
+
+        Returns
+        -------
+        int
+            k >= 1, or 0 for a constant law.
+        """
+        a = np.abs(np.fft.rfft(self.dense()[1]))
+        above = np.flatnonzero(a[1:] > 1e-12 * max(float(np.max(a)), 1e-300))
+        return int(above[-1]) + 1 if above.size else 0
+
     def coefficients(self, K: int) -> np.ndarray:
         """c_0..c_K with lam(tau) = Re sum_k c_k exp(i k omega tau) (harmonics above K dropped).
 

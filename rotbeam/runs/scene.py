@@ -392,6 +392,44 @@ class SceneResult:
             "y_m_quasistatic": self.y_quasistatic,
         }
 
+    def dense_series(self, samples: int) -> dict[str, np.ndarray]:
+        """The window's curves at `samples` instants per drive period, for a figure.
+
+        The dynamic curve is the trigonometric interpolant of each period's samples (a steady
+        state repeats with the drive, and the window resolves its harmonics:
+        `rotbeam.solve.steady.window_samples`); the quasi-static one is solved again at the
+        new instants.  Without a steady state, or with no more instants than the window's, it
+        is `time_series` itself.
+
+        Parameters
+        ----------
+        samples : int
+            Instants per drive period.
+
+        Returns
+        -------
+        dict
+            ``tau`` (units of T), ``t_s`` [s], ``y_m_dynamic`` and ``y_m_quasistatic`` (units
+            of L) over the window's periods; arrays of one length.
+        """
+        m, size = self.dynamic.samples_per_period, self.tau.size
+        if not self.converged or m == 0 or size % m or samples <= m:
+            return self.time_series()
+        periods = size // m
+        model = self.scene.model()
+        P = model.dl.period
+        theta = self.dynamic.theta.reshape(model.n, periods, m)
+        dense = [trig_interpolate(theta[:, q].T, samples).T for q in range(periods)]
+        tau = self.tau[0] + np.arange(periods * samples) * (P / samples)
+        y_qs = quasistatic_midspan(model, tau[:samples])[1]
+        T = self.scene.beam.T
+        return {
+            "tau": tau,
+            "t_s": tau * T,
+            "y_m_dynamic": np.atleast_1d(model.midspan(np.concatenate(dense, axis=1))),
+            "y_m_quasistatic": np.tile(y_qs, periods),
+        }
+
 
 def stability_columns(dyn: SteadyState) -> dict[str, Any]:
     """The Floquet columns of a dynamic run, for the summary.
@@ -542,13 +580,16 @@ def _simulate_grid(
     num = scene.numerics
     model = scene.model()
     dl = model.dl
-    # quasi-static first: it is cheap, sets the response scale and the tolerances' size
-    m = num.samples_per_period
-    taus_one = np.arange(m) / m * dl.period
-    th_qs1, y_qs1 = quasistatic_midspan(model, taus_one)
+    # quasi-static first: it is cheap, sets the response scale and the tolerances' size; at the
+    # drive's window samples (the collocated orbit's harmonics may ask the window for more)
+    m = window_samples(dl, num)
+    th_qs1, y_qs1 = quasistatic_midspan(model, np.arange(m) / m * dl.period)
     scale = float(np.max(np.abs(th_qs1))) if th_qs1.size else 0.0
     dyn = steady_state(model, num, progress=progress, response_scale=scale or None, guess=guess,
                        time_budget=time_budget)  # fmt: skip
+    if dyn.samples_per_period > m:  # the same instants as the dynamic window
+        m = dyn.samples_per_period
+        th_qs1, y_qs1 = quasistatic_midspan(model, np.arange(m) / m * dl.period)
     # the quasi-static response has the drive's period: reuse the one-period solve when the
     # window's instants fall on its phases (they do, but for a failed run's last sample)
     phase = (dyn.tau / dl.period) % 1.0 * m

@@ -47,10 +47,15 @@ def fourier_diff_matrix(M: int, period: float) -> np.ndarray:
 def trig_interpolate(X: np.ndarray, m: int) -> np.ndarray:
     """The trigonometric interpolant of equispaced samples, resampled at another count.
 
+    Fewer instants than samples keep the harmonics below m / 2 (a low-pass, not an alias; for an
+    even m, half the cosine of harmonic m / 2).  For an even M the Nyquist harmonic M / 2 is a
+    cosine counted once: on more instants it enters with half its weight, as the interpolant of
+    least oscillation has it.
+
     Parameters
     ----------
     X : numpy.ndarray
-        M equispaced samples of one period along axis 0, shape (M, ...), M odd.
+        M equispaced samples of one period along axis 0, shape (M, ...).
     m : int
         Number of equispaced instants wanted (the first at the same time as X's).
 
@@ -61,7 +66,31 @@ def trig_interpolate(X: np.ndarray, m: int) -> np.ndarray:
     """
     M = X.shape[0]
     C = np.fft.rfft(X, axis=0)
+    if M % 2 == 0 and m > M:
+        C[M // 2] *= 0.5
     return np.fft.irfft(C, n=m, axis=0) * (m / M)
+
+
+def highest_harmonic(X: np.ndarray, tol: float) -> int:
+    """The highest harmonic a periodic signal carries above a share of its size.
+
+    Parameters
+    ----------
+    X : numpy.ndarray
+        M equispaced samples of one period along axis 0, shape (M, ...).
+    tol : float
+        The share: a harmonic counts when its 2-norm (over the other axes) exceeds tol times
+        the 2-norm of the whole spectrum, the mean included (as `harmonic_tail` measures).
+
+    Returns
+    -------
+    int
+        k >= 1 of the highest such harmonic, 0 for a constant (or zero) signal.
+    """
+    C = np.abs(np.fft.rfft(np.reshape(X, (X.shape[0], -1)), axis=0))
+    size = np.sqrt(np.sum(C**2, axis=1))
+    above = np.flatnonzero(size[1:] > tol * float(np.sqrt(np.sum(size**2))))
+    return int(above[-1]) + 1 if above.size else 0
 
 
 def harmonic_tail(X: np.ndarray) -> float:

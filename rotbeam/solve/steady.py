@@ -29,7 +29,7 @@ from .floquet import STEP_LADDER, FloquetResult
 from .numerics import Numerics
 from .periodic import Neighbour, PeriodicResult, as_neighbour, refined, solve_periodic_adaptive
 from .quasistatic import quasistatic_series
-from .spectral import trig_interpolate
+from .spectral import highest_harmonic, trig_interpolate
 from .stability import (
     STATUS_UNSTABLE,
     Certificate,
@@ -69,6 +69,47 @@ class SteadyState:
     #: (Theta, Theta_t) after the last whole period of the march, or a certified orbit's start
     #: (None otherwise): the start of the next point of a sweep that follows the beam
     state: np.ndarray | None = None
+    #: instants per drive period of the window (`window_samples`; 0 where no period was sampled)
+    samples_per_period: int = 0
+
+
+#: the RMS window's instants per period of the highest harmonic it must resolve, the drive's or
+#: the collocated orbit's (docs/numerics.md, "The RMS window")
+SAMPLES_PER_HARMONIC = 4
+
+
+def window_samples(dl: Dimensionless, num: Numerics, periodic: PeriodicResult | None = None) -> int:
+    """Instants per drive period of the RMS window: numerics.samples_per_period, or more where
+    the drive or the response carries harmonics that many instants would alias.
+
+    K is the highest harmonic of the drive (`DriveLaw.highest_harmonic`) and of a converged
+    collocated orbit (its highest harmonic above numerics.tail_tol of its size:
+    `rotbeam.solve.spectral.highest_harmonic`).  Where SAMPLES_PER_HARMONIC K exceeds
+    samples_per_period, the window takes that many instants rounded up to a power of two (the
+    FFT sizes of `trig_interpolate`).  The paper's sine and drives of a few low harmonics keep
+    samples_per_period; a trapezoid's 256 harmonics take 1024.
+
+    Parameters
+    ----------
+    dl : Dimensionless
+        The scene (its drive law).
+    num : Numerics
+        samples_per_period (the least count) and tail_tol.
+    periodic : PeriodicResult or None
+        The collocated orbit, if one was made.
+
+    Returns
+    -------
+    int
+        The instants per drive period.
+    """
+    k = dl.law.highest_harmonic
+    if periodic is not None and periodic.converged:
+        k = max(k, highest_harmonic(periodic.theta.T, num.tail_tol))
+    need = SAMPLES_PER_HARMONIC * k
+    if need <= num.samples_per_period:
+        return num.samples_per_period
+    return 1 << (need - 1).bit_length()
 
 
 def period_samples(dl: Dimensionless, k0: int, periods: int, m: int) -> np.ndarray:
@@ -224,20 +265,20 @@ def collocation_window(
     Parameters
     ----------
     dl : Dimensionless
-        The scene (its drive period).
+        The scene (its drive period and law).
     num : Numerics
-        rms_periods and samples_per_period.
+        rms_periods, and what `window_samples` reads.
     res : PeriodicResult
         The collocated orbit.
 
     Returns
     -------
     tau : numpy.ndarray
-        `rms_periods` periods of `samples_per_period` instants from tau = 0, shape (p m,).
+        `rms_periods` periods of m = `window_samples` instants from tau = 0, shape (p m,).
     theta : numpy.ndarray
         The orbit's angles [rad] there, shape (n, p m).
     """
-    m, p = num.samples_per_period, num.rms_periods
+    m, p = window_samples(dl, num, res), num.rms_periods
     return period_samples(dl, 0, p, m), np.tile(trig_interpolate(res.theta.T, m).T, (1, p))
 
 
@@ -266,6 +307,7 @@ def _orbit_state(
         periodic=res,
         floquet=fl,
         state=np.concatenate([res.theta[:, 0], res.theta_t[:, 0]]) if status == 0 else None,
+        samples_per_period=window_samples(model.dl, num, res),
     )
 
 
@@ -440,14 +482,20 @@ def tolerances(
 
 
 class PeriodStepper:
-    """One `solve_ivp` over whole drive periods, within the wall-time budget; counts the
-    right-hand side and Jacobian evaluations over all its calls (`nfev`, `njev`)."""
+    """One `solve_ivp` over whole drive periods, within the wall-time budget, sampled `samples`
+    times a period (`window_samples`); counts the right-hand side and Jacobian evaluations over
+    all its calls (`nfev`, `njev`)."""
 
     def __init__(
-        self, model: DiscreteModel, num: Numerics, tol: Tolerances, time_budget: TimeBudget
+        self,
+        model: DiscreteModel,
+        num: Numerics,
+        tol: Tolerances,
+        time_budget: TimeBudget,
+        samples: int,
     ) -> None:
         self.model, self.dl, self.num, self.tol = model, model.dl, num, tol
-        self.n, self.time_budget = model.n, time_budget
+        self.n, self.time_budget, self.samples = model.n, time_budget, samples
         system = FirstOrderSystem(model, time_budget.deadline)
         self.rhs = system.rhs
         self.jac = system.jac if num.jacobian == "exact" else None
@@ -601,7 +649,7 @@ def march(
         message and the transient bounds.
     """
     dl, num, tol, n = stepper.dl, stepper.num, stepper.tol, stepper.n
-    P, m, p = dl.period, num.samples_per_period, num.rms_periods
+    P, m, p = dl.period, stepper.samples, num.rms_periods
     # from a converged collocated orbit one period measures its distance to the time-stepped
     # orbit; from any other start the first period's difference may be a lucky crossing
     min_periods = 1 if from_orbit else 2
@@ -658,6 +706,7 @@ class Window:
     status: int
     message: str
     periods: int  #: drive periods integrated in all
+    samples: int  #: instants per drive period
 
 
 def rms_window(
@@ -687,9 +736,9 @@ def rms_window(
         The samples (tau, Theta), the status and message, and the periods integrated in all.
     """
     dl, num, n = stepper.dl, stepper.num, stepper.n
-    p, m, k = num.rms_periods, num.samples_per_period, run.k
+    p, m, k = num.rms_periods, stepper.samples, run.k
     if run.status != 0:
-        return Window(*run.last, run.status, run.message, k)
+        return Window(*run.last, run.status, run.message, k, m)
     if k == 1 and from_orbit and periodic.harmonic_tail <= num.tail_tol:
         return Window(
             *collocation_window(dl, num, periodic),
@@ -697,6 +746,7 @@ def rms_window(
             f"collocation orbit (M={periodic.M}, harmonic tail {periodic.harmonic_tail:.2g}) "
             f"verified by one period of time stepping (transient bound {run.bound:.2g})",
             k,
+            m,
         )
     if run.reusable:
         return Window(
@@ -705,15 +755,16 @@ def rms_window(
             0,
             run.message + f" (RMS window: the last {p} of them)",
             k,
+            m,
         )
     taus = period_samples(dl, k, p, m)
     sol = stepper.periods(k, p, run.z, taus, stepper.tol.rtol)
     if sol is None:
         msg = _out_of_time(stepper, k, run.bound) + " (in the RMS window)"
-        return Window(*run.last, 1, msg, k)
+        return Window(*run.last, 1, msg, k, m)
     if sol.status < 0 or sol.y.shape[1] != taus.size or not np.all(np.isfinite(sol.y)):
-        return Window(*run.last, -1, f"integrator failed in the RMS window: {sol.message}", k)
-    return Window(taus, sol.y[:n], 0, run.message, k + p)
+        return Window(*run.last, -1, f"integrator failed in the RMS window: {sol.message}", k, m)
+    return Window(taus, sol.y[:n], 0, run.message, k + p, m)
 
 
 #: the finest collocation `certify_refining` goes to (solve_periodic_adaptive's M_max)
@@ -848,7 +899,7 @@ def steady_state(
     tol = tolerances(model, num, z, response_scale, periodic, from_orbit)
     if unstable_orbit:
         z = leave_orbit(z, orbit_fl, tol.scale)
-    stepper = PeriodStepper(model, num, tol, budget)
+    stepper = PeriodStepper(model, num, tol, budget, window_samples(model.dl, num, periodic))
     run = march(stepper, z, from_orbit, progress)
     win = rms_window(stepper, run, periodic, from_orbit)
     status, message, fl = reported_stability(model, num, win, orbit_fl, from_orbit, periodic)
@@ -868,6 +919,7 @@ def steady_state(
         periodic=periodic,
         floquet=fl,
         state=run.z.copy(),
+        samples_per_period=win.samples,
     )
 
 
@@ -940,9 +992,9 @@ def reported_stability(
     model : DiscreteModel
         The model and its drive.
     num : Numerics
-        samples_per_period (the last period's samples give the multipliers).
+        floquet_tol.
     win : Window
-        The reported window.
+        The reported window (its last period's samples give the multipliers).
     orbit_fl : FloquetResult or None
         The collocated orbit's multipliers, if any.
     from_orbit : bool
@@ -963,7 +1015,7 @@ def reported_stability(
     status, message = win.status, win.message
     fl = orbit_fl if status == 0 and win.periods == 1 and from_orbit else None
     if status == 0 and fl is None:
-        fl = window_stability(model, win.theta[:, -num.samples_per_period :])
+        fl = window_stability(model, win.theta[:, -win.samples :])
         if fl is not None and fl.unstable:
             status = STATUS_UNSTABLE
             message += "; but the orbit reached is unstable (a slow transient, not a steady state)"
