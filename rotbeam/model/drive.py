@@ -394,6 +394,24 @@ class HarmonicLaw(DriveLaw):
 PROFILE_HARMONICS = 32
 
 
+def kept_harmonics(samples: int, keep: int | None = None) -> int:
+    """The highest harmonic `harmonics_of_samples` keeps of a period sampled `samples` times.
+
+    Parameters
+    ----------
+    samples : int
+        Samples of the period.
+    keep : int or None
+        The harmonics asked for (default PROFILE_HARMONICS).
+
+    Returns
+    -------
+    int
+        `keep`, at most half the samples.
+    """
+    return min(samples // 2, PROFILE_HARMONICS if keep is None else keep)
+
+
 def harmonics_of_samples(
     phase: tuple[float, ...], values: tuple[float, ...], keep: int | None = None
 ) -> tuple[float, tuple[tuple[int, float, float], ...]]:
@@ -430,7 +448,7 @@ def harmonics_of_samples(
         spline = CubicSpline(np.append(x, x[0] + 1.0), np.append(y, y[0]), bc_type="periodic")
         y = spline(uniform)
     c = np.fft.rfft(y) / n
-    K = min(n // 2, PROFILE_HARMONICS if keep is None else keep)
+    K = kept_harmonics(n, keep)
     scale = max(float(np.max(np.abs(c[1:]))), 1e-300) if c.size > 1 else 1.0
     terms = []
     for k in range(1, K + 1):

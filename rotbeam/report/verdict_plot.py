@@ -7,11 +7,69 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
+from matplotlib.figure import Figure
+
 from ..analysis.verdict import Verdict
 from ..config.checks import check_plot_suffix
+from ..model.drive import kept_harmonics
+from ..model.modes import resonance_frequency_hz
+from ..model.params import Drive
 from ..runs.move import MoveResult
 from ..runs.scene import SceneResult
 from .style import DYN, QS, figure, save
+
+#: points the verdict's figure draws per period of the first in-plane mode at the drive's
+#: largest speed (a slow drive's window samples the vibration a few times a cycle)
+MODE_PERIOD_POINTS = 32
+
+
+def plot_samples(result: SceneResult) -> int:
+    """Instants per drive period the verdict's figure draws.
+
+    Parameters
+    ----------
+    result : SceneResult
+        The simulated scene.
+
+    Returns
+    -------
+    int
+        MODE_PERIOD_POINTS per period of the first in-plane mode at the drive's largest speed
+        (`rotbeam.model.modes.resonance_frequency_hz`), rounded up to a multiple of the
+        window's samples (the curves pass through every computed sample).
+    """
+    scene = result.scene
+    m = max(result.dynamic.samples_per_period, 1)
+    f1 = resonance_frequency_hz(scene.beam, scene.drive.omega_max)
+    return m * max(1, math.ceil(MODE_PERIOD_POINTS * f1 / scene.drive.f_d / m))
+
+
+def largest_speed_text(drive: Drive) -> str:
+    """The title's largest speed of a drive that is not the sine.
+
+    A sampled profile's own largest |Omega| sample, and its trigonometric interpolant's beside
+    it where the two differ at the title's four digits (the Gibbs overshoot at a trapezoid's
+    corners: 6.018 rad/s for a 6 rad/s trapezoid of 32 harmonics).
+
+    Parameters
+    ----------
+    drive : Drive
+        The drive.
+
+    Returns
+    -------
+    str
+        "largest speed W rad/s", with "(W' after the K-harmonic interpolant)" where it differs.
+    """
+    law = drive.omega_max
+    if drive.profile is None:
+        return f"largest speed {law:.4g} rad/s"
+    own = max(abs(w) for w in drive.profile.omega)
+    text = f"largest speed {own:.4g} rad/s"
+    if f"{own:.4g}" != f"{law:.4g}":
+        k = kept_harmonics(len(drive.profile.omega), drive.profile.keep)
+        text += f" ({law:.4g} after the {k}-harmonic interpolant)"
+    return text
 
 
 def plot_verdict(result: SceneResult, verdict: Verdict, path: str | Path) -> None:
@@ -33,7 +91,26 @@ def plot_verdict(result: SceneResult, verdict: Verdict, path: str | Path) -> Non
         If `path` does not end in one of PLOT_SUFFIXES (checked before drawing).
     """
     path = check_plot_suffix(path)
-    series = result.time_series()
+    save(verdict_figure(result, verdict), path)
+
+
+def verdict_figure(result: SceneResult, verdict: Verdict) -> Figure:
+    """The figure of `plot_verdict`: y_m over the steady window at `plot_samples` instants a
+    drive period (`SceneResult.dense_series`), the verdict in the title, the cost in the legend.
+
+    Parameters
+    ----------
+    result : SceneResult
+        The simulated scene.
+    verdict : Verdict
+        Its verdict (`judge`).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure, not yet saved.
+    """
+    series = result.dense_series(plot_samples(result))
     t = series["t_s"] - series["t_s"][0]
     scene = result.scene
     drive, num = scene.drive, scene.numerics
@@ -51,7 +128,7 @@ def plot_verdict(result: SceneResult, verdict: Verdict, path: str | Path) -> Non
         where += "; no Euler load, no $f_d^*$"
     what = rf"$\Omega_0$ = {drive.omega0:g} rad/s, a = {drive.amplitude:g} rad/s"
     if drive.kind != "sine":
-        what = f"{drive.kind} drive, largest speed {drive.omega_max:.4g} rad/s"
+        what = f"{drive.kind} drive, {largest_speed_text(drive)}"
     ax.set_title(
         what + rf", $f_d$ = {drive.f_d:g} Hz" + f"\n{where}\n" + verdict.text.split(" (")[0],
         loc="left",
@@ -60,7 +137,7 @@ def plot_verdict(result: SceneResult, verdict: Verdict, path: str | Path) -> Non
     extrapolated = bool(result.extrapolation and result.extrapolation.get("extrapolated"))
     cost += ", Richardson-extrapolated RMS)" if extrapolated else ")"
     ax.legend(title=cost, loc="upper center", bbox_to_anchor=(0.5, -0.2), ncol=2)
-    save(fig, path)
+    return fig
 
 
 def plot_move(result: MoveResult, verdict: Verdict, path: str | Path) -> None:
