@@ -34,13 +34,14 @@ from ..model.params import (
     Samples,
     check_model_range,
     drive_groups,
+    unit_hint,
     unused_drive_field,
 )
 from ..solve.extrapolation import richardson
 from ..solve.floquet import VERDICT_ONLY
 from ..solve.numerics import Numerics
 from ..solve.periodic import Neighbour
-from ..solve.quasistatic import quasistatic_series
+from ..solve.quasistatic import QuasiStaticError, quasistatic_series
 from ..solve.spectral import trig_interpolate
 from ..solve.steady import SteadyState, steady_state, window_samples
 from ..solve.timebudget import TimeBudget
@@ -67,12 +68,21 @@ class Scene:
         The loads (default: the paper's).
     numerics : Numerics
         Grid, solver tolerances and budgets.
+
+    Raises
+    ------
+    RotbeamInputError
+        For a scene outside the model's range (`check_model_range`): a drive too fast for the
+        beam, or a centrifugal tension that would stretch it past twice its length.
     """
 
     beam: Beam = Beam()
     drive: Drive = Drive()
     effects: Effects = Effects()
     numerics: Numerics = Numerics()
+
+    def __post_init__(self) -> None:
+        check_model_range(self.beam, self.drive)
 
     @property
     def dimensionless(self) -> Dimensionless:
@@ -121,9 +131,7 @@ def build_scene(spec: dict[str, Any] | None = None, base: str | Path = ".") -> S
     parts = {
         name: cls(**sections.get(name, {})) for name, cls in CLASSES.items() if name != "drive"
     }
-    scene = Scene(drive=drive_of(sections.get("drive", {}), Path(base)), **parts)
-    check_model_range(scene.beam, scene.drive)
-    return scene
+    return Scene(drive=drive_of(sections.get("drive", {}), Path(base)), **parts)
 
 
 def scene_files(spec: dict[str, Any]) -> list[str]:
@@ -431,6 +439,29 @@ class SceneResult:
         }
 
 
+def folded(scene: Scene, exc: QuasiStaticError) -> QuasiStaticError:
+    """The quasi-static solver's failure restated for the scene: the beam folds under its loads,
+    with the drive's C_max and E_max and a likely unit slip (`unit_hint`).
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene whose quasi-static response has no equilibrium Newton reaches.
+    exc : QuasiStaticError
+        The solver's error (where, in the model's units).
+
+    Returns
+    -------
+    QuasiStaticError
+        One line for a reader.
+    """
+    g = drive_groups(scene.beam, scene.drive)
+    return QuasiStaticError(
+        f"no quasi-static state: the beam folds under the scene's loads (C_max = "
+        f"{g['C_max']:.3g}, E_max = {g['E_max']:.3g}; {exc}){unit_hint(scene.beam)}"
+    )
+
+
 def stability_columns(dyn: SteadyState) -> dict[str, Any]:
     """The Floquet columns of a dynamic run, for the summary.
 
@@ -525,7 +556,10 @@ def simulate(
             "rotbeam.runs.move.simulate_move (rotbeam simulate --move)"
         )
     time_budget = time_budget or TimeBudget(scene.numerics.max_seconds)
-    fine = _simulate_grid(scene, progress, guess, time_budget)
+    try:
+        fine = _simulate_grid(scene, progress, guess, time_budget)
+    except QuasiStaticError as exc:
+        raise folded(scene, exc) from None
     num = scene.numerics
     if not num.extrapolate:
         return fine
