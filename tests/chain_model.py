@@ -108,6 +108,9 @@ class ChainModel:
     #: a point mass mu = m / (rho A L) at the free end: kinetic energy (mu/2)|P_n-dot|^2 and the
     #: body forces A P_n + B' V_n on it (B' without damping: a payload has none of its own)
     tip_mass: float = 0.0
+    #: its rotary inertia j = J / (rho A L^3): kinetic energy (j/2)(lam + phid_n)^2, so j on the
+    #: last link's mass and the Euler torque -j lamdot on it
+    tip_inertia: float = 0.0
     h: float = field(init=False)
     r_o: float = field(init=False)
 
@@ -196,7 +199,10 @@ class ChainModel:
         wx, wy = wx + tx, wy + ty
         at_n = (a11 - a00) * s * c + a10 * c * c - a01 * s * s
         bn_n = b00 * s * s + b11 * c * c - (b01 + b10) * s * c
-        return h**2 * (c * wy - s * wx) + h**3 / 12.0 * (at_n + u * bn_n)
+        q = h**2 * (c * wy - s * wx) + h**3 / 12.0 * (at_n + u * bn_n)
+        if self.tip_inertia:
+            q[-1] -= self.tip_inertia * a01  # a01 = lamdot with the Euler load on
+        return q
 
     def generalized_forces(
         self, phi: np.ndarray, u: np.ndarray, lam: float, lamdot: float
@@ -208,7 +214,9 @@ class ChainModel:
     def mass_matrix(self, phi: np.ndarray) -> np.ndarray:
         """M_kl = h^3 g_kl cos(phi_k - phi_l)."""
         c, s = np.cos(phi), np.sin(phi)
-        return self.h**3 * self._g * (np.outer(c, c) + np.outer(s, s))
+        m = self.h**3 * self._g * (np.outer(c, c) + np.outer(s, s))
+        m[-1, -1] += self.tip_inertia
+        return m
 
     def _gyro(self, phi: np.ndarray) -> np.ndarray:
         """S_kl = h^3 g_kl sin(phi_k - phi_l)."""
@@ -231,7 +239,9 @@ class ChainModel:
         # (S u^2)_k = s_k (h^3 g (c u^2))_k - c_k (h^3 g (s u^2))_k
         gyro = s * (h3g @ (c * u2)) - c * (h3g @ (s * u2))
         rhs = self._q(c, s, u, self._ab(lam, lamdot)) - self.K @ phi - gyro
-        return np.linalg.solve(h3g * (np.outer(c, c) + np.outer(s, s)), rhs)
+        m = h3g * (np.outer(c, c) + np.outer(s, s))
+        m[-1, -1] += self.tip_inertia
+        return np.linalg.solve(m, rhs)
 
     def rhs(self, z: np.ndarray, lam: float, lamdot: float) -> np.ndarray:
         """First-order right-hand side for z = (phi, phid)."""

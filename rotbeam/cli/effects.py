@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 
+from ..config.errors import RotbeamInputError
 from . import options, show
 from .progress import bar
 
@@ -41,7 +42,13 @@ def run(args: argparse.Namespace) -> int:
     RotbeamInputError
         If a flag or the scene file is not allowed, or omega0 or f_d is missing.
     """
-    scene, _, _ = options.scene_request(args)
+    scene, tol, _ = options.scene_request(args)
+    if tol is not None:
+        raise RotbeamInputError(
+            "effects: auto: rotbeam effects computes the budget that auto reads; allowed: a "
+            "list of effects the budget starts from (--effects centrifugal,euler or the scene "
+            "file's effects section)"
+        )
 
     from ..analysis.effect_budget import effect_budget
 
