@@ -417,6 +417,7 @@ def scene_request(args: argparse.Namespace, needs: tuple[str, ...] = ("omega0", 
         spec["effects"] = vars(Effects.from_list(args.effects)).copy()
     else:
         tol = file_tol
+    _check_values(spec)  # a bad value is named before a missing one
     for key in needs:
         if key not in spec.get("drive", {}):
             what = {"omega0": "a finite number, rad/s", "f_d": "a number > 0, Hz"}[key]
@@ -432,6 +433,15 @@ def scene_request(args: argparse.Namespace, needs: tuple[str, ...] = ("omega0", 
         inputs = read_inputs(section, args.uncertainty, f"scene file {args.scene!r}")
         scene = at_means(scene, inputs)
     return scene, tol, inputs
+
+
+def _check_values(spec: dict[str, dict[str, Any]]) -> None:
+    """Check every scalar field a scene spec sets against the registry (one line naming the
+    first bad one), before its missing fields are asked for."""
+    for section, values in spec.items():
+        for name, value in values.items():
+            if param(section, name).kind != "data":
+                check_value(section, name, value)
 
 
 #: the flags that set a drive's kind, and the scene key each fills
