@@ -291,9 +291,8 @@ def chain_move_peak(beam: Beam, duration: float, top: float, n_links: int) -> fl
     """The largest |y_m| / L during the sin^2 move Omega = top sin^2(pi t / duration) of the
     rigid-link chain (tests/chain_model.py), started at rest in the straight state, with the
     exact law (no spline)."""
-    from scipy.integrate import solve_ivp
-
     from chain_model import ChainModel
+    from scipy.integrate import solve_ivp
 
     T = beam.T
     chain = ChainModel(n_links, beam.delta, eta=beam.eta)
