@@ -31,6 +31,9 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--plot", help="draw y_m, dynamic against quasi-static, with the verdict and "
                    "the cost, to this .png, .pdf or .svg file (without a stable periodic state: "
                    "the Poincare section and the spectrum)")  # fmt: skip
+    p.add_argument("--observe", metavar="NAMES", help="also report these observables, "
+                   "comma-separated: y_m, tip, root_moment, root_stress, tip_acceleration "
+                   "(RMS, peaks and Delta RMS of each; a move also its residual)")  # fmt: skip
     options.add_uncertainty_flags(p)
 
 
@@ -60,9 +63,10 @@ def run(args: argparse.Namespace) -> int:
     if args.out and Path(args.out).suffix not in (".csv", ".parquet"):
         raise RotbeamInputError(f"--out must end in .csv or .parquet, got {args.out!r}")
     options.check_plot_path(args.plot)
+    observe = _observe(args)
     scene, tol, inputs = options.scene_request(args)
     if scene.drive.move is not None:
-        return _run_move(args, scene, threshold, tol, inputs)
+        return _run_move(args, scene, threshold, tol, inputs, observe)
 
     from ..analysis.verdict import judge
     from ..runs.response import response_of_result
@@ -100,6 +104,8 @@ def run(args: argparse.Namespace) -> int:
         prop = simulate_spread(scene, res, inputs, args.uq_method, args.uq_samples, threshold,
                                time_budget)  # fmt: skip
         summary["uncertainty"] = prop.as_dict()
+    if observe:
+        summary["observables"] = res.observables(observe)
     if args.out:
         from ..report.io import write_series
 
@@ -110,7 +116,28 @@ def run(args: argparse.Namespace) -> int:
         show.as_json(summary)
     else:
         _print(summary, verdict, prop)
+        _print_observables(summary.get("observables"))
     return 0 if res.converged else 1
+
+
+def _observe(args: argparse.Namespace) -> tuple[str, ...]:
+    """The observables --observe asks for, checked (none without the flag)."""
+    if args.observe is None:
+        return ()
+    from ..runs.observables import observable_names
+
+    return observable_names(args.observe)
+
+
+def _print_observables(table: dict | None) -> None:
+    """A small table of the observables: one row per name, its unit and numbers."""
+    if not table:
+        return
+    columns = [k for k in next(iter(table.values())) if k != "unit"]
+    print(f"{'observable':{show.WIDTH}s} {'unit':6s} " + " ".join(f"{c:>16s}" for c in columns))
+    for name, row in table.items():
+        cells = " ".join(f"{row[c]:16.6g}" for c in columns)
+        print(f"{name:{show.WIDTH}s} {row['unit']:6s} {cells}")
 
 
 def _print(summary: dict, verdict, prop) -> None:
@@ -142,7 +169,7 @@ def _plot(path: str, res, verdict, classified) -> None:
         plot_verdict(res, verdict, path)
 
 
-def _run_move(args: argparse.Namespace, scene, threshold: float, tol, inputs) -> int:
+def _run_move(args: argparse.Namespace, scene, threshold: float, tol, inputs, observe=()) -> int:
     """`rotbeam simulate --move`: the move, its verdict, its numbers, its figure."""
     if tol is not None or inputs:
         raise RotbeamInputError(
@@ -162,6 +189,8 @@ def _run_move(args: argparse.Namespace, scene, threshold: float, tol, inputs) ->
         res = simulate_move(scene, progress=advanced)
     verdict = judge_move(res, threshold)
     summary = res.summary() | verdict.as_dict()
+    if observe:
+        summary["observables"] = res.observables(observe)
     if args.out:
         from ..report.io import write_series
 
@@ -178,4 +207,5 @@ def _run_move(args: argparse.Namespace, scene, threshold: float, tol, inputs) ->
     show.line("converged", f"{res.converged} ({res.message})")
     show.line("verdict", verdict.text)
     show.line("seconds", f"{res.seconds:.3g}")
+    _print_observables(summary.get("observables"))
     return 0 if res.converged else 1

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import math
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 from typing import Any
 
@@ -22,6 +22,7 @@ from ..model.criterion import delta_rms, rms
 from ..model.modes import resonance_frequency_hz
 from ..solve.quasistatic import QuasiStaticError, quasistatic_series, solve_static
 from ..solve.system import FirstOrderSystem, OutOfTime
+from .observables import OBSERVABLES, States, compare, observable_names, still
 from .scene import Scene, folded
 
 #: without `settle`: integrate first-mode periods after the move until |y_m| over one of them
@@ -64,6 +65,55 @@ class MoveResult:
     message: str
     nfev: int
     seconds: float
+    theta: np.ndarray | None = None  #: (n, m) angles [rad] at the samples
+    theta_t: np.ndarray | None = None  #: (n, m) their rates (units of 1/T)
+    theta_quasistatic: np.ndarray | None = None  #: (n, m) the quasi-static twin's angles
+
+    def observables(self, names: str | Iterable[str] = ("y_m",)) -> dict[str, dict[str, Any]]:
+        """Observables of the move, dynamic beside quasi-static (docs/model.md, "Observables").
+
+        RMS and peaks over the move, as for y_m; ``residual``: the largest |value| of the
+        dynamic run after the move.  The dynamic accelerations are the equation of motion's at
+        the stepper's states; the quasi-static twin's rates are zero (it balances the loads
+        with the beam at rest in the turning frame; after the move it is the straight beam).
+
+        Parameters
+        ----------
+        names : str or iterable of str
+            Names of `rotbeam.runs.observables.OBSERVABLES`, or one comma-separated string.
+
+        Returns
+        -------
+        dict
+            name -> {``unit``, ``rms_dynamic``, ``rms_quasistatic``, ``delta_rms``,
+            ``peak_dynamic``, ``peak_quasistatic``, ``residual``}.
+
+        Raises
+        ------
+        RotbeamInputError
+            For a name the registry does not hold.
+        ValueError
+            If the result carries no angles (a MoveResult built without them).
+        """
+        names = observable_names(names)
+        if self.theta is None or self.theta_quasistatic is None:
+            raise ValueError("this MoveResult carries no angles (theta) to observe")
+        model, beam = self.scene.model(), self.scene.beam
+        tau = self.t_s / beam.T
+        in_move = tau < model.dl.law.duration
+        qs = States(tau, self.theta_quasistatic, still(self.theta_quasistatic),
+                    still(self.theta_quasistatic))  # fmt: skip
+        dyn = States(tau, self.theta, self.theta_t)
+        if any(OBSERVABLES[name].rates for name in names):
+            dyn = States(tau, self.theta, self.theta_t, _accelerations(model, dyn))
+        out = {}
+        for name in names:
+            obs = OBSERVABLES[name]
+            values, twin = obs(model, beam, dyn), obs(model, beam, qs)
+            out[name] = compare(values[in_move], twin[in_move], obs.unit)
+            after = np.abs(values[~in_move])
+            out[name]["residual"] = float(np.max(after)) if after.size else math.nan
+        return out
 
     def summary(self) -> dict[str, Any]:
         """The move's numbers for tables and JSON (scalars only).
@@ -95,6 +145,14 @@ class MoveResult:
         """
         return {"t_s": self.t_s, "omega": self.omega, "y_m_dynamic": self.y_dynamic,
                 "y_m_quasistatic": self.y_quasistatic}  # fmt: skip
+
+
+def _accelerations(model, states: States) -> np.ndarray:
+    """Theta_tt at each sample from the equation of motion (`DiscreteModel.acceleration`)."""
+    lam, lam_dot = model.drive_rows(states.tau)
+    cols = [model.acceleration(states.theta[:, k], states.theta_t[:, k], lam[k], lam_dot[k])
+            for k in range(states.tau.size)]  # fmt: skip
+    return np.array(cols).T if cols else np.zeros_like(states.theta)
 
 
 @one_blas_thread
@@ -178,6 +236,8 @@ def simulate_move(
     after = np.abs(y[~in_move])
     lam_all = np.array([law.lam(t) for t in tau_all])
     y_qs_all = np.concatenate([qs_move, np.zeros(after.size)])  # the straight beam after it
+    n_move, n = int(in_move.sum()), model.n
+    theta_qs_all = np.concatenate([theta_qs[:, :n_move], np.zeros((n, after.size))], axis=1)
     return MoveResult(
         scene=scene,
         t_s=tau_all * T,
@@ -197,6 +257,9 @@ def simulate_move(
         message=message,
         nfev=run.nfev,
         seconds=time.perf_counter() - t0,
+        theta=np.array(run.samples).T.reshape(n, -1),
+        theta_t=np.array(run.rates).T.reshape(n, -1),
+        theta_quasistatic=theta_qs_all,
     )
 
 
@@ -245,6 +308,7 @@ class _Stepper:
         self.atol = np.concatenate([np.full(n, a), np.full(n, a * rate)])  # times w1
         self.times: list[float] = []
         self.samples: list[np.ndarray] = []
+        self.rates: list[np.ndarray] = []
         self.z: np.ndarray | None = None
         self.tau = 0.0
         self.nfev = 0
@@ -268,6 +332,7 @@ class _Stepper:
         self.nfev += sol.nfev
         self.times += list(sol.t[:-1])
         self.samples += list(sol.y[: s.n, :-1].T)
+        self.rates += list(sol.y[s.n :, :-1].T)
         self.z, self.tau = sol.y[:, -1], t_end
         if self.report is not None:
             self.report(t_end)

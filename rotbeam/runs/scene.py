@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import math
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
@@ -45,6 +45,7 @@ from ..solve.quasistatic import QuasiStaticError, quasistatic_series
 from ..solve.spectral import trig_interpolate
 from ..solve.steady import SteadyState, steady_state, window_samples
 from ..solve.timebudget import TimeBudget
+from .observables import OBSERVABLES, States, compare, observable_names, still, window_rates
 
 CLASSES = {"beam": Beam, "drive": Drive, "effects": Effects, "numerics": Numerics}
 #: the drive keys that name a CSV file, and its columns
@@ -381,6 +382,50 @@ class SceneResult:
         out.update({k: v for k, v in beam.derived().items() if k in ("G", "delta", "eta", "zeta")})
         if self.extrapolation is not None:
             out.update(self.extrapolation)
+        return out
+
+    def observables(self, names: str | Iterable[str] = ("y_m",)) -> dict[str, dict[str, Any]]:
+        """Observables of both responses over the RMS window (docs/model.md, "Observables").
+
+        The dynamic steady state's rates and accelerations are the spectral derivatives of
+        each period's samples (the orbit repeats with the drive); the quasi-static twin's are
+        zero (it balances the loads with the beam at rest in the turning frame).  The values
+        are those of grid N (`numerics.extrapolate` extrapolates y_m's RMS only).
+
+        Parameters
+        ----------
+        names : str or iterable of str
+            Names of `rotbeam.runs.observables.OBSERVABLES`, or one comma-separated string.
+
+        Returns
+        -------
+        dict
+            name -> {``unit``, ``rms_dynamic``, ``rms_quasistatic``, ``delta_rms``,
+            ``peak_dynamic``, ``peak_quasistatic``}; the dynamic numbers are NaN where no
+            period was sampled, and those that read rates where the window holds no steady
+            state.
+
+        Raises
+        ------
+        RotbeamInputError
+            For a name the registry does not hold.
+        """
+        names = observable_names(names)
+        model, beam = self.scene.model(), self.scene.beam
+        theta = self.dynamic.theta
+        rates = None
+        if self.converged:
+            rates = window_rates(theta, self.dynamic.samples_per_period, model.dl.period)
+        dyn = States(self.tau, theta, *(rates or (None, None)))
+        qs = States(self.tau, self.theta_quasistatic, still(self.theta_quasistatic),
+                    still(self.theta_quasistatic))  # fmt: skip
+        out = {}
+        for name in names:
+            obs = OBSERVABLES[name]
+            values = np.full(self.tau.size, math.nan)
+            if self.tau.size > 1 and (rates is not None or not obs.rates):
+                values = obs(model, beam, dyn)
+            out[name] = compare(values, obs(model, beam, qs), obs.unit)
         return out
 
     def time_series(self) -> dict[str, np.ndarray]:
