@@ -227,3 +227,10 @@ def test_cli_observe_json_and_bad_name():
     assert p.returncode == 2 and "Traceback" not in p.stderr
     assert len(p.stderr.strip().splitlines()) == 1 and "'bending'" in p.stderr
     assert "tip_acceleration" in p.stderr
+
+
+def test_cli_help_names_every_observable():
+    p = run("simulate", "--help")
+    text = " ".join(p.stdout.split())
+    assert p.returncode == 0 and "--observe" in text
+    assert all(name in text for name in OBSERVABLES)
