@@ -3,9 +3,10 @@
 `judge` gives the full model's verdict (Delta RMS against a threshold, the paper's criterion)
 and the linear estimate of where the boundary lies (the damped first mode driven by every
 harmonic of the drive; c_0 f_0 for the sine); `critical` finds f_d* of the full model at one
-speed by root finding started at that estimate (`rotbeam critical`).  The criterion, the
-estimate, its lag branch for overdamped beams and the search: docs/model.md, "The verdict and
-the linear estimate of f_d*".  The verdict's figure is `rotbeam.report.verdict_plot`.
+speed by root finding started at that estimate (`rotbeam critical`).  Both read Delta RMS of one
+observable, the criterion (`rotbeam.runs.observables`: y_m, the paper's, by default).  The
+criterion, the estimate, its lag branch for overdamped beams and the search: docs/model.md, "The
+verdict and the linear estimate of f_d*".  The verdict's figure is `rotbeam.report.verdict_plot`.
 """
 
 from __future__ import annotations
@@ -24,6 +25,7 @@ from ..model.modes import damping_ratio, resonance_frequency_hz
 from ..model.params import Drive
 from ..model.secondorder import c0_root, delta_rms_harmonics, first_crossing
 from ..runs.move import SETTLED, MoveResult
+from ..runs.observables import criterion_name
 from ..runs.scene import Scene, SceneResult, simulate
 from ..solve.timebudget import TimeBudget
 
@@ -46,6 +48,7 @@ class Verdict:
     #: the linear estimate of f_d* [Hz] (`linear_estimate`); NaN without an Euler load
     fd_star_estimate_hz: float
     text: str  #: one line for a reader
+    criterion: str = "y_m"  #: the observable whose Delta RMS is judged (`criterion_delta_rms`)
 
     def as_dict(self) -> dict[str, float | bool | str | None]:
         """The verdict as JSON-ready fields (part of `rotbeam simulate --json`).
@@ -53,12 +56,15 @@ class Verdict:
         Returns
         -------
         dict
-            ``threshold``, ``quasistatic_ok``, ``f0_hz`` [Hz], ``c0`` (dimensionless),
-            ``fd_star_estimate_hz`` [Hz] and ``verdict`` (the one-line text).  Delta RMS is not
-            repeated here: the scene's summary carries it.
+            ``threshold``, ``criterion`` (the observable's name), ``criterion_delta_rms`` (its
+            Delta RMS, dimensionless), ``quasistatic_ok``, ``f0_hz`` [Hz], ``c0``
+            (dimensionless), ``fd_star_estimate_hz`` [Hz] and ``verdict`` (the one-line text).
+            The scene's summary carries y_m's Delta RMS as ``delta_rms``.
         """
         return {
             "threshold": self.threshold,
+            "criterion": self.criterion,
+            "criterion_delta_rms": self.delta_rms,
             "quasistatic_ok": self.quasistatic_ok,
             "f0_hz": self.f0_hz,
             "c0": self.c0,
@@ -67,14 +73,14 @@ class Verdict:
         }
 
 
-def judge(result: SceneResult, threshold: float = 0.10) -> Verdict:
+def judge(result: SceneResult, threshold: float = 0.10, criterion: str = "y_m") -> Verdict:
     """The verdict of the full model on one scene, and the linear estimate of the boundary.
 
-    Quasi-static is good enough where Delta RMS < `threshold`; a dynamic run without a steady
-    state gives no verdict.  The linear estimate of f_d* (`linear_estimate`: c_0 f_0 for the
-    sine) tells how far from the boundary the scene's f_d lies; a drive without an Euler load
-    has none, and the text says so (docs/model.md, "The verdict and the linear estimate of
-    f_d*").
+    Quasi-static is good enough where Delta RMS of the criterion < `threshold`; a dynamic run
+    without a steady state gives no verdict.  The linear estimate of f_d* (`linear_estimate`:
+    c_0 f_0 for the sine) tells how far from the boundary the scene's f_d lies; it is the first
+    mode's whatever the criterion; a drive without an Euler load has none, and the text says so
+    (docs/model.md, "The verdict and the linear estimate of f_d*").
 
     Parameters
     ----------
@@ -82,37 +88,91 @@ def judge(result: SceneResult, threshold: float = 0.10) -> Verdict:
         The simulated scene (`rotbeam.runs.scene.simulate`).
     threshold : float
         The Delta RMS threshold, dimensionless, in (0, 1); 0.10 is the paper's.
+    criterion : str
+        The observable whose Delta RMS is judged (`rotbeam.runs.observables.OBSERVABLES`);
+        "y_m", the paper's, by default.
 
     Returns
     -------
     Verdict
         The answer (`quasistatic_ok`: True, False or None), f_0 [Hz], c_0, the estimate of f_d*
-        [Hz] and one line of text.
+        [Hz], one line of text and the criterion's name.
 
     Raises
     ------
     RotbeamInputError
-        If `threshold` is not a number in (0, 1).
+        If `threshold` is not a number in (0, 1) or `criterion` is not an observable's name.
     """
     th = check_threshold(threshold)
+    name = criterion_name(criterion)
     beam, drive = result.scene.beam, result.scene.drive
     f0 = resonance_frequency_hz(beam, drive.omega_max)
     zeta = damping_ratio(beam)
     ratio, note = linear_estimate(drive, zeta, th)
+    first_mode = "" if name == "y_m" else ", the first mode's"
     where = f"f_d / f_0 = {drive.f_d / f0:.3g}; " + (
-        f"linear estimate f_d* = {ratio * f0:.3g} Hz{note}" if math.isfinite(ratio) else note
+        f"linear estimate f_d* = {ratio * f0:.3g} Hz{note}{first_mode}"
+        if math.isfinite(ratio)
+        else note
     )
-    d = result.delta_rms
+    d = criterion_delta_rms(result, name)
+    label = criterion_label(name)
     if not result.converged or not math.isfinite(d):
         ok = None
         text = f"no verdict: the dynamic run reached no steady state ({where})"
     elif d < th:
         ok = True
-        text = f"quasi-static is good enough: Delta RMS {d:.3g} < {th:g} ({where})"
+        text = f"quasi-static is good enough: {label} {d:.3g} < {th:g} ({where})"
     else:
         ok = False
-        text = f"inertia matters: Delta RMS {d:.3g} >= {th:g}, use the dynamic model ({where})"
-    return Verdict(th, d, ok, f0, _app_e_c0(zeta, th), ratio * f0, text)
+        text = f"inertia matters: {label} {d:.3g} >= {th:g}, use the dynamic model ({where})"
+    return Verdict(th, d, ok, f0, _app_e_c0(zeta, th), ratio * f0, text, name)
+
+
+def criterion_delta_rms(result: SceneResult | MoveResult, criterion: str = "y_m") -> float:
+    """Delta RMS = |RMS_dyn - RMS_qs| / RMS_dyn of one observable over the result's window.
+
+    For y_m it is the result's own `delta_rms` (Richardson's where numerics.extrapolate asks);
+    for another observable, its `observables` entry over the same window, at grid N.
+
+    Parameters
+    ----------
+    result : SceneResult or MoveResult
+        A simulated scene or move.
+    criterion : str
+        An observable's name (`rotbeam.runs.observables.OBSERVABLES`).
+
+    Returns
+    -------
+    float
+        Delta RMS, dimensionless; NaN where the window holds no dynamic values.
+
+    Raises
+    ------
+    RotbeamInputError
+        If `criterion` is not an observable's name.
+    """
+    name = criterion_name(criterion)
+    if name == "y_m":
+        return result.delta_rms
+    return float(result.observables((name,))[name]["delta_rms"])
+
+
+def criterion_label(criterion: str) -> str:
+    """How the verdict's text names Delta RMS: plain for y_m, the paper's; with the observable's
+    name otherwise ("Delta RMS of root_moment").
+
+    Parameters
+    ----------
+    criterion : str
+        An observable's name.
+
+    Returns
+    -------
+    str
+        The label.
+    """
+    return "Delta RMS" if criterion == "y_m" else f"Delta RMS of {criterion}"
 
 
 #: A harmonic whose Euler load k |a_k| is below this fraction of the drive's largest |Omega| is
@@ -228,7 +288,8 @@ class _NoSteadyState(Exception):
 
 @dataclass(frozen=True)
 class Critical:
-    """The drive frequency f_d* at which Delta RMS reaches the threshold, at one rotation speed.
+    """The drive frequency f_d* at which Delta RMS of the criterion reaches the threshold, at one
+    rotation speed.
 
     What `critical` returns: the root (or why there is none), where the search started and every
     full-model run it made, so that a reader can judge the answer and its cost.
@@ -242,6 +303,7 @@ class Critical:
     visited: list[tuple[float, float]]  #: (f_d, Delta RMS) of every full-model run, in order
     seconds: float
     message: str
+    criterion: str = "y_m"  #: the observable whose Delta RMS the search reads
 
     def as_dict(self) -> dict[str, object]:
         """The search as JSON-ready fields (`rotbeam critical --json`).
@@ -250,11 +312,13 @@ class Critical:
         -------
         dict
             ``found``, ``f_d_star`` [Hz], ``threshold``, ``f0_hz`` [Hz], ``estimate_hz`` [Hz],
-            ``seconds`` [s], ``message``, ``c`` = f_d* / f_0 (dimensionless), ``evaluations``
-            (full-model runs) and ``visited`` ([f_d Hz, Delta RMS] per run, in order).
+            ``seconds`` [s], ``message``, ``criterion`` (the observable's name), ``c`` =
+            f_d* / f_0 (dimensionless), ``evaluations`` (full-model runs) and ``visited``
+            ([f_d Hz, Delta RMS of the criterion] per run, in order).
         """
         out = {k: getattr(self, k) for k in ("found", "f_d_star", "threshold", "f0_hz",
-                                             "estimate_hz", "seconds", "message")}  # fmt: skip
+                                             "estimate_hz", "seconds", "message",
+                                             "criterion")}  # fmt: skip
         out["c"] = self.f_d_star / self.f0_hz
         out["evaluations"] = len(self.visited)
         out["visited"] = [list(v) for v in self.visited]
@@ -267,7 +331,8 @@ MAX_STEPS = 12
 
 
 class _Excess:
-    """Delta RMS - threshold of the full model at the scene's speed, as a function of f_d.  Each
+    """Delta RMS of the criterion - threshold of the full model at the scene's speed, as a
+    function of f_d.  Each
     f_d runs once (brentq evaluates the bracket ends again) and the last orbit seeds the next
     collocation; a run without a steady state, or the time budget spent, raises _NoSteadyState."""
 
@@ -277,8 +342,10 @@ class _Excess:
         th: float,
         time_budget: TimeBudget,
         progress: Callable[[], None] | None = None,
+        criterion: str = "y_m",
     ) -> None:
         self.scene, self.th, self.progress = scene, th, progress
+        self.criterion = criterion
         self.time_budget = time_budget
         self.seen: dict[float, float] = {}  #: f_d -> Delta RMS, in the order run
         self.guess = None
@@ -292,20 +359,21 @@ class _Excess:
             drive = replace(self.scene.drive, f_d=f_d)
             res = simulate(replace(self.scene, drive=drive), guess=self.guess,
                            time_budget=self.time_budget)  # fmt: skip
-            if not res.converged or not math.isfinite(res.delta_rms):
+            d = criterion_delta_rms(res, self.criterion) if res.converged else math.nan
+            if not math.isfinite(d):
                 raise _NoSteadyState(
                     f"no steady state at f_d = {f_d:.4g} Hz: {res.dynamic.message}"
                 )
             orbit = res.dynamic.periodic
             self.guess = orbit.theta.T if orbit is not None and orbit.converged else None
-            self.seen[f_d] = res.delta_rms
+            self.seen[f_d] = d
             if self.progress is not None:
                 self.progress()
         return self.seen[f_d] - self.th
 
 
 def _bracket(
-    excess: Callable[[float], float], f: float, g: float, th: float
+    excess: Callable[[float], float], f: float, g: float, th: float, label: str = "Delta RMS"
 ) -> tuple[float, float] | str:
     """From f (where excess(f) = g != 0) step by BRACKET_FACTOR towards the threshold until
     excess changes sign: the bracket (lo, hi), or why there is none within MAX_STEPS."""
@@ -318,7 +386,7 @@ def _bracket(
             return lo, hi
         f, g = f * step, g_next
     side = "below" if step > 1 else "above"
-    return (f"Delta RMS stays {side} {th:g} from {start:.4g} Hz to {f:.4g} Hz ({MAX_STEPS} "
+    return (f"{label} stays {side} {th:g} from {start:.4g} Hz to {f:.4g} Hz ({MAX_STEPS} "
             f"steps of x{step:.3g})")  # fmt: skip
 
 
@@ -365,10 +433,12 @@ def critical(
     rtol: float = 1e-3,
     progress: Callable[[], None] | None = None,
     time_budget: TimeBudget | None = None,
+    criterion: str = "y_m",
 ) -> Critical:
     """f_d* [Hz]: the drive frequency at which Delta RMS of the full model reaches `threshold`,
     at the scene's speed and amplitude, by root finding instead of a dense scan.
 
+    Delta RMS is the criterion's (`criterion_delta_rms`: y_m's, the paper's, by default).
     Starts at the linear estimate (`linear_estimate`: App. E's c_0 f_0 for the sine, within a
     few per cent on the reference beam, or its lag branch for overdamped beams), steps by
     BRACKET_FACTOR until Delta RMS - threshold changes sign, then runs brentq to a relative
@@ -388,38 +458,45 @@ def critical(
         Called after every full-model run of the search.
     time_budget : TimeBudget or None
         The wall-time budget of the whole search; None: the scene's numerics.max_seconds.
+    criterion : str
+        The observable whose Delta RMS reaches `threshold` at f_d*
+        (`rotbeam.runs.observables.OBSERVABLES`); the search starts at the first mode's linear
+        estimate whatever the criterion.
 
     Returns
     -------
     Critical
         f_d* [Hz] and ``found = True``, or NaN, ``found = False`` and the reason in ``message``;
-        with f_0, the start, every run made and the wall time.
+        with f_0, the start, every run made, the wall time and the criterion.
 
     Raises
     ------
     RotbeamInputError
-        If `threshold` is not in (0, 1), `rtol` not a float in [1e-8, 0.1], or the drive is a
-        single move or has no Euler load (no f_d* to find).
+        If `threshold` is not in (0, 1), `rtol` not a float in [1e-8, 0.1], `criterion` not an
+        observable's name, or the drive is a single move or has no Euler load (no f_d* to find).
     """
     from scipy.optimize import brentq
 
     th = check_threshold(threshold)
+    name = criterion_name(criterion)
     if not (isinstance(rtol, float) and 1e-8 <= rtol <= 0.1):
         raise RotbeamInputError(f"rtol must be in [1e-8, 0.1], got {rtol!r}")
     t0 = time.perf_counter()
     f0, start = _start(scene, th)
     estimate = start
-    excess = _Excess(scene, th, time_budget or TimeBudget(scene.numerics.max_seconds), progress)
+    budget = time_budget or TimeBudget(scene.numerics.max_seconds)
+    excess = _Excess(scene, th, budget, progress, name)
 
     def done(found: bool, f: float, msg: str) -> Critical:
         visited = list(excess.seen.items())
-        return Critical(found, f, th, f0, estimate, visited, time.perf_counter() - t0, msg)
+        seconds = time.perf_counter() - t0
+        return Critical(found, f, th, f0, estimate, visited, seconds, msg, name)
 
     try:
         g = excess(start)
         if g == 0.0:
-            return done(True, start, "Delta RMS equals the threshold at the start")
-        bracket = _bracket(excess, start, g, th)
+            return done(True, start, f"{criterion_label(name)} equals the threshold at the start")
+        bracket = _bracket(excess, start, g, th, criterion_label(name))
         if isinstance(bracket, str):
             return done(False, math.nan, bracket)
         lo, hi = bracket
@@ -429,9 +506,9 @@ def critical(
     return done(True, float(root), f"brentq in [{lo:.4g}, {hi:.4g}] Hz to rtol {rtol:g}")
 
 
-def judge_move(result: MoveResult, threshold: float = 0.10) -> Verdict:
-    """The verdict on a single move: the same threshold on Delta RMS over the move, with the
-    size of the vibration it leaves behind.
+def judge_move(result: MoveResult, threshold: float = 0.10, criterion: str = "y_m") -> Verdict:
+    """The verdict on a single move: the same threshold on Delta RMS of the criterion over the
+    move, with the size of the vibration (y_m) it leaves behind.
 
     Parameters
     ----------
@@ -439,17 +516,27 @@ def judge_move(result: MoveResult, threshold: float = 0.10) -> Verdict:
         The move, simulated (`rotbeam.runs.move.simulate_move`).
     threshold : float
         Delta RMS below which quasi-static is good enough, in (0, 1).
+    criterion : str
+        The observable whose Delta RMS is judged (`rotbeam.runs.observables.OBSERVABLES`);
+        "y_m", the paper's, by default.
 
     Returns
     -------
     Verdict
         f0_hz is the first in-plane frequency at the move's largest speed; c0 and the estimate
         of f_d* are NaN (a move has no repetition rate).
+
+    Raises
+    ------
+    RotbeamInputError
+        If `threshold` is not a number in (0, 1) or `criterion` is not an observable's name.
     """
     th = check_threshold(threshold)
+    name = criterion_name(criterion)
     scene = result.scene
     f0 = resonance_frequency_hz(scene.beam, scene.drive.omega_max)
-    d = result.delta_rms
+    d = criterion_delta_rms(result, name)
+    label = criterion_label(name)
     settle = "does not settle in the window"
     if math.isfinite(result.settling_time_s):
         settle = (f"settles below {100 * SETTLED:g} % of the peak in "
@@ -461,8 +548,8 @@ def judge_move(result: MoveResult, threshold: float = 0.10) -> Verdict:
     if not result.converged or not math.isfinite(d):
         ok, text = None, f"no verdict: {result.message}"
     elif d < th:
-        ok, text = True, f"quasi-static is good enough: Delta RMS {d:.3g} < {th:g}; {after}"
+        ok, text = True, f"quasi-static is good enough: {label} {d:.3g} < {th:g}; {after}"
     else:
         ok = False
-        text = f"inertia matters: Delta RMS {d:.3g} >= {th:g}, use the dynamic model; {after}"
-    return Verdict(th, d, ok, f0, math.nan, math.nan, text)
+        text = f"inertia matters: {label} {d:.3g} >= {th:g}, use the dynamic model; {after}"
+    return Verdict(th, d, ok, f0, math.nan, math.nan, text, name)

@@ -23,6 +23,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     """
     options.add_scene_flags(p, drive_frequency=False)
     options.add_field(p, "verdict", "threshold")
+    options.add_criterion_flag(p)
     options.add_field(p, "critical", "ftol")
     options.add_uncertainty_flags(p)
 
@@ -44,11 +45,13 @@ def run(args: argparse.Namespace) -> int:
     Raises
     ------
     RotbeamInputError
-        If a flag, the scene file or the uncertainty is not allowed, or omega0 is missing.
+        If a flag, the scene file or the uncertainty is not allowed, omega0 is missing, or
+        --criterion names no observable (or meets an uncertainty).
     """
     threshold = options.option(args, "verdict", "threshold")
     ftol = options.option(args, "critical", "ftol")
     scene, tol, inputs = options.scene_request(args, needs=("omega0",))
+    criterion = options.criterion_request(args, inputs)
 
     from ..analysis.verdict import critical, critical_start_hz
     from ..solve.timebudget import TimeBudget
@@ -63,7 +66,8 @@ def run(args: argparse.Namespace) -> int:
                                          tol, time_budget)  # fmt: skip
         out["effects_auto"] = show.auto_dict(auto, budget, f_start)
     with bar(args, "f_d* search", "run") as b:
-        res = critical(scene, threshold, ftol, progress=b.update, time_budget=time_budget)
+        res = critical(scene, threshold, ftol, progress=b.update, time_budget=time_budget,
+                       criterion=criterion)  # fmt: skip
     out = res.as_dict() | {"omega0": scene.drive.mean_speed, "amplitude": scene.drive.swing,
                            "N": scene.numerics.N,
                            "effects": ",".join(scene.effects.active())} | out  # fmt: skip
@@ -82,6 +86,8 @@ def run(args: argparse.Namespace) -> int:
     show.line("f0_hz", f"{res.f0_hz:.6g}")
     show.line("estimate_hz", f"{res.estimate_hz:.6g} (linear, where the search started)")
     show.line("found", f"{res.found} ({res.message})")
+    if criterion != "y_m":
+        show.line("criterion", f"Delta RMS of {criterion}")
     show.line("evaluations", f"{len(res.visited)}")
     if "effects_auto" in out:
         show.auto_effects(out["effects_auto"])

@@ -490,6 +490,52 @@ def add_uncertainty_flags(p: argparse.ArgumentParser) -> None:
                    help="Sobol runs, a power of two (default 32)")  # fmt: skip
 
 
+def add_criterion_flag(p: argparse.ArgumentParser) -> None:
+    """--criterion: the observable whose Delta RMS the verdict and the f_d* search read.
+
+    Parameters
+    ----------
+    p : argparse.ArgumentParser
+        The command's parser.
+    """
+    p.add_argument("--criterion", metavar="NAME", default="y_m",
+                   help="judge Delta RMS of this observable: y_m (default, the paper's), tip, "
+                   "root_moment, root_stress or tip_acceleration (the linear estimate of f_d* "
+                   "stays the first mode's)")  # fmt: skip
+
+
+def criterion_request(args: argparse.Namespace, inputs: dict) -> str:
+    """The --criterion asked for, checked; an uncertainty propagates y_m's numbers only.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        The parsed flags (`add_criterion_flag`).
+    inputs : dict
+        The uncertainty's inputs (`scene_request`); empty without one.
+
+    Returns
+    -------
+    str
+        The observable's name.
+
+    Raises
+    ------
+    RotbeamInputError
+        One line for a name that is not an observable (naming the allowed ones), or for a
+        criterion other than y_m beside an uncertainty.
+    """
+    from ..runs.observables import criterion_name
+
+    name = criterion_name(args.criterion)
+    if name != "y_m" and inputs:
+        raise RotbeamInputError(
+            f"--criterion {name} does not combine with an uncertainty (it propagates y_m's "
+            "Delta RMS only); allowed there: --criterion y_m"
+        )
+    return name
+
+
 def check_plot_path(path: str | None) -> None:
     """Check a --plot path's suffix (.png, .pdf, .svg) before any work.
 

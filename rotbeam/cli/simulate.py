@@ -25,6 +25,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
     """
     options.add_scene_flags(p, drive_frequency=True)
     options.add_field(p, "verdict", "threshold")
+    options.add_criterion_flag(p)
     options.add_field(p, "response", "periods")
     options.add_field(p, "response", "N")
     p.add_argument("--out", help="write the time series to this CSV or Parquet file")
@@ -55,7 +56,8 @@ def run(args: argparse.Namespace) -> int:
     ------
     RotbeamInputError
         If a flag, the scene file or the uncertainty is not allowed, omega0 or f_d is missing,
-        or --out or --plot has a suffix that is not written.
+        --criterion names no observable (or meets an uncertainty), or --out or --plot has a
+        suffix that is not written.
     """
     threshold = options.option(args, "verdict", "threshold")
     periods, response_N = options.option(args, "response", "periods"), options.option(
@@ -65,8 +67,11 @@ def run(args: argparse.Namespace) -> int:
     options.check_plot_path(args.plot)
     observe = _observe(args)
     scene, tol, inputs = options.scene_request(args)
+    criterion = options.criterion_request(args, inputs)
+    if criterion != "y_m" and criterion not in observe:
+        observe = (*observe, criterion)  # the criterion's numbers beside the verdict
     if scene.drive.move is not None:
-        return _run_move(args, scene, threshold, tol, inputs, observe)
+        return _run_move(args, scene, threshold, tol, inputs, observe, criterion)
 
     from ..analysis.verdict import judge
     from ..runs.response import response_of_result
@@ -87,7 +92,7 @@ def run(args: argparse.Namespace) -> int:
             b.set_postfix_str(f"transient bound {bound:.2e}")
 
         res = simulate(scene, progress=period, time_budget=time_budget.part(STEADY_SHARE))
-    verdict = judge(res, threshold)
+    verdict = judge(res, threshold, criterion)
     with bar(args, f"response (N = {response_N})", "period", 2 * periods) as b:
 
         def classified_period(done: int, total: int) -> None:
@@ -169,7 +174,8 @@ def _plot(path: str, res, verdict, classified) -> None:
         plot_verdict(res, verdict, path)
 
 
-def _run_move(args: argparse.Namespace, scene, threshold: float, tol, inputs, observe=()) -> int:
+def _run_move(args: argparse.Namespace, scene, threshold: float, tol, inputs, observe=(),
+              criterion: str = "y_m") -> int:  # fmt: skip
     """`rotbeam simulate --move`: the move, its verdict, its numbers, its figure."""
     if tol is not None or inputs:
         raise RotbeamInputError(
@@ -187,7 +193,7 @@ def _run_move(args: argparse.Namespace, scene, threshold: float, tol, inputs, ob
             reached[0] = round(1e3 * done_s)
 
         res = simulate_move(scene, progress=advanced)
-    verdict = judge_move(res, threshold)
+    verdict = judge_move(res, threshold, criterion)
     summary = res.summary() | verdict.as_dict()
     if observe:
         summary["observables"] = res.observables(observe)

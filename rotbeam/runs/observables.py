@@ -272,6 +272,32 @@ def observable_names(names: str | Iterable[str]) -> tuple[str, ...]:
     return tuple(out)
 
 
+def criterion_name(name: str) -> str:
+    """The one observable a verdict and the f_d* search are put on, checked against the registry.
+
+    Parameters
+    ----------
+    name : str
+        One name of OBSERVABLES ("y_m", the paper's, or "root_moment", ...).
+
+    Returns
+    -------
+    str
+        The name, stripped.
+
+    Raises
+    ------
+    RotbeamInputError
+        One line naming the value and the allowed names, for anything but one known name.
+    """
+    key = name.strip() if isinstance(name, str) else None
+    if key not in OBSERVABLES:
+        raise RotbeamInputError(
+            f"criterion {name!r} is not an observable; allowed: {', '.join(OBSERVABLES)}"
+        )
+    return key
+
+
 def periodic_rates(theta: np.ndarray, period: float) -> tuple[np.ndarray, np.ndarray]:
     """Rates and accelerations of a periodic series, spectrally (the derivative of its
     trigonometric interpolant; an even count's Nyquist harmonic is dropped).
