@@ -47,6 +47,17 @@ def test_schema_effects_are_the_registry_effects():
     assert SCHEMA["properties"]["effects"]["items"]["enum"] == list(SECTIONS["effects"])
 
 
+def test_schema_observables_are_the_registry_observables():
+    """config user_scenes_observe allows exactly the observables of the registry, and the
+    config's own list is among them."""
+    from rotbeam.runs.observables import OBSERVABLES
+
+    node = SCHEMA["properties"]["user_scenes_observe"]
+    assert node["items"]["enum"] == list(OBSERVABLES)
+    full = load_yaml((ROOT / "config/config.yaml").read_text())
+    assert set(full["user_scenes_observe"]) <= set(OBSERVABLES)
+
+
 @pytest.mark.parametrize(
     "cls, section", [(Beam, "beam"), (Drive, "drive"), (Effects, "effects"), (Numerics, "numerics")]
 )

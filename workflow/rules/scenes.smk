@@ -28,6 +28,7 @@ rule user_scenes:
         code=code_version("user_scenes"),
         scenes=config.get("user_scenes") or {},
         threshold=config["main_threshold"],
+        observe=config.get("user_scenes_observe") or [],
         base=lambda wildcards: CONFIG_DIR,
     script:
         "../scripts/user_scenes.py"

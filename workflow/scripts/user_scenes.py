@@ -9,7 +9,7 @@ from rotbeam.report.scene_figures import scenes_figure
 
 with job_log(snakemake.log[0], snakemake.input, snakemake.output, snakemake.rule) as log:
     p = snakemake.params
-    table = judge_scenes(p.scenes, p.threshold, p.base)
+    table = judge_scenes(p.scenes, p.threshold, p.base, p.observe)
     for row in table.itertuples():
         log.info("%s: %s (%.2f s)", row.scene, row.verdict, row.seconds)
     write_table(table, snakemake.output.csv, snakemake.output.md,
