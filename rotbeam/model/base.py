@@ -367,6 +367,49 @@ class DiscreteModel(ABC):
         """
         return self.first_order_rows(theta[None], theta_t[None], [lam], [lam_dot])[1][0]
 
+    # --- the equation of motion as a residual ----------------------------------------------------
+    def residual_rows(
+        self,
+        theta: np.ndarray,
+        theta_t: np.ndarray,
+        theta_tt: np.ndarray,
+        lam: np.ndarray,
+        lam_dot: np.ndarray,
+    ) -> ResidualRows:
+        """The equation of motion as a residual at m instants, with what its blocks reuse.
+
+        R = M (Theta_tt + eta Theta_t) + S Theta_t^2 + 2 lam B Theta_t + K Theta + L, with
+        eta Md Theta_t in place of eta M Theta_t where the damping has its own mass matrix
+        (`damping_rows`): zero where (Theta, Theta_t, Theta_tt) is a motion of the model.  What
+        collocation solves at its instants; `ResidualRows.blocks` gives dR/dTheta, dR/dTheta_t
+        and dR/dTheta_tt = M (docs/model.md, "The model contract").
+
+        Parameters
+        ----------
+        theta, theta_t, theta_tt : numpy.ndarray
+            Angles [rad], their rates (1/T) and accelerations (1/T^2), shape (m, n) each.
+        lam, lam_dot : numpy.ndarray
+            Omega T and its rate of change at the m instants, shape (m,).
+
+        Returns
+        -------
+        ResidualRows
+            ``R`` (dimensionless torques, shape (m, n)) and its blocks on demand.
+        """
+        lam, lam_dot = np.asarray(lam, dtype=float), np.asarray(lam_dot, dtype=float)
+        Mm, Bm = self.inertia_rows(theta)
+        v = self.velocity_vector(theta_t, lam)
+        S = self.velocity_matrix_rows(theta, Bm)
+        damp = self.damping_rows(theta)
+        a = theta_tt + self.eta * theta_t if damp is None else theta_tt
+        R = matvec_rows(Mm, a) + matvec_rows(Bm, v) + theta @ self.stiffness.T
+        if damp is not None:  # the damping's own mass matrix
+            R += self.eta * matvec_rows(damp[0], theta_t)
+        R += self.load_torque_rows(theta, lam, lam_dot)
+        if S is not Bm:  # a model whose squared rates carry another matrix than B
+            R += matvec_rows(S - Bm, theta_t * theta_t)
+        return ResidualRows(self, theta, theta_t, a, lam, lam_dot, Mm, Bm, v, damp, R)
+
     # --- the static problem ---------------------------------------------------------------------
     def static_rows(
         self, theta: np.ndarray, lam: np.ndarray, lam_dot: np.ndarray, jacobian: bool = False
@@ -465,3 +508,47 @@ class DiscreteModel(ABC):
             In units of L, along and across the clamp's direction: scalar arrays or shape (m,).
         """
         return self.grid.tip(theta)
+
+
+class ResidualRows:
+    """The residual of the equation of motion at m instants (`DiscreteModel.residual_rows`), and
+    its derivatives from the same evaluation of the mass and gyroscopic matrices.
+
+    Attributes
+    ----------
+    R : numpy.ndarray
+        The residual, shape (m, n), dimensionless torques.
+    """
+
+    def __init__(self, model, theta, theta_t, a, lam, lam_dot, Mm, Bm, v, damp, R) -> None:
+        self.model, self.theta, self.theta_t, self.a = model, theta, theta_t, a
+        self.lam, self.lam_dot = lam, lam_dot
+        self.Mm, self.Bm, self.v, self.damp, self.R = Mm, Bm, v, damp, R
+
+    def blocks(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """dR/dTheta, dR/dTheta_t and dR/dTheta_tt = M at each instant (exact for S = B: the
+        identities of `DiscreteModel.inertia_rows` and the loads' own Jacobian).
+
+        Returns
+        -------
+        dR_dtheta, dR_dtheta_t, mass : numpy.ndarray
+            Shape (m, n, n) each.
+        """
+        m, theta, V, a = self.model, self.theta, self.theta_t, self.a
+        Mm, Bm, v, damp = self.Mm, self.Bm, self.v, self.damp
+        n = m.n
+        Ba = matvec_rows(Bm, a)
+        Mv = matvec_rows(Mm, v)
+        dv = 2.0 * V
+        if m.effects.coriolis:
+            dv = dv + 2.0 * self.lam[:, None]
+        Cj = m.eta * (Mm if damp is None else damp[0]) + Bm * dv[:, None, :]
+        _, Lj = m.load_torque_rows(theta, self.lam, self.lam_dot, jacobian=True)
+        Lj += m.stiffness[None] + Bm * a[:, None, :] - Mm * v[:, None, :]
+        idx = np.arange(n)
+        Lj[:, idx, idx] += Mv - Ba
+        if damp is not None:  # d(eta Md V)/dTheta = eta (Bd diag(V) - diag(Bd V))
+            Bd = damp[1]
+            Lj += m.eta * (Bd * V[:, None, :])
+            Lj[:, idx, idx] -= m.eta * matvec_rows(Bd, V)
+        return Lj, Cj, Mm

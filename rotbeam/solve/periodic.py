@@ -61,20 +61,15 @@ class Collocation:
         self.lam, self.lam_dot = model.drive_rows(self.tau)
         self._cache: tuple | None = None
 
-    def _state(self, X: np.ndarray):
-        """Everything the residual and the Jacobian share at X; cached for the last X."""
+    def _rows(self, X: np.ndarray):
+        """The model's residual rows at the instants (`DiscreteModel.residual_rows`, with the
+        rates and accelerations by the Fourier differentiation matrix); cached for the last X,
+        which the residual and the Jacobian share."""
         if self._cache is not None and self._cache[0] is X:
             return self._cache[1]
-        V = self.D @ X
-        A = self.D2 @ X
-        Mm, Bm = self.model.inertia_rows(X)
-        v = V * V
-        if self.model.effects.coriolis:
-            v = v + 2.0 * self.lam[:, None] * V
-        S = self.model.velocity_matrix_rows(X, Bm)
-        st = (V, A, Mm, Bm, v, S, self.model.damping_rows(X))
-        self._cache = (X, st)
-        return st
+        rows = self.model.residual_rows(X, self.D @ X, self.D2 @ X, self.lam, self.lam_dot)
+        self._cache = (X, rows)
+        return rows
 
     def residual(self, X: np.ndarray) -> np.ndarray:
         """The residual of the equations of motion at the collocation instants.
@@ -89,16 +84,7 @@ class Collocation:
         numpy.ndarray
             R_j (dimensionless torques), shape (M, n); zero on a collocated orbit.
         """
-        m = self.model
-        V, A, Mm, Bm, v, S, damp = self._state(X)
-        a = A + m.eta * V if damp is None else A
-        R = matvec_rows(Mm, a) + matvec_rows(Bm, v) + X @ m.stiffness.T
-        if damp is not None:  # the damping's own mass matrix
-            R += m.eta * matvec_rows(damp[0], V)
-        R += m.load_torque_rows(X, self.lam, self.lam_dot)
-        if S is not Bm:  # a model whose squared rates carry another matrix than B
-            R += matvec_rows(S - Bm, V * V)
-        return R
+        return self._rows(X).R
 
     def jacobian_blocks(self, X: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """The Jacobian at X as three block sets: J = diag(L_j) + diag(C_j) D + diag(M_j) D^2
@@ -118,25 +104,7 @@ class Collocation:
         Mm : numpy.ndarray
             The mass matrices M(Theta_j), shape (M, n, n).
         """
-        m = self.model
-        n = m.n
-        V, A, Mm, Bm, v, _, damp = self._state(X)
-        a = A + m.eta * V if damp is None else A
-        Ba = matvec_rows(Bm, a)
-        Mv = matvec_rows(Mm, v)
-        dv = 2.0 * V
-        if m.effects.coriolis:
-            dv = dv + 2.0 * self.lam[:, None]
-        Cj = m.eta * (Mm if damp is None else damp[0]) + Bm * dv[:, None, :]
-        _, Lj = m.load_torque_rows(X, self.lam, self.lam_dot, jacobian=True)
-        Lj += m.stiffness[None] + Bm * a[:, None, :] - Mm * v[:, None, :]
-        idx = np.arange(n)
-        Lj[:, idx, idx] += Mv - Ba
-        if damp is not None:  # d(eta Md V)/dTheta = eta (Bd diag(V) - diag(Bd V))
-            Bd = damp[1]
-            Lj += m.eta * (Bd * V[:, None, :])
-            Lj[:, idx, idx] -= m.eta * matvec_rows(Bd, V)
-        return Lj, Cj, Mm
+        return self._rows(X).blocks()
 
     def dense_jacobian(self, blocks: tuple[np.ndarray, np.ndarray, np.ndarray]) -> np.ndarray:
         """The block Jacobian as one dense matrix (for small problems and tests).
