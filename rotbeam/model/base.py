@@ -296,9 +296,10 @@ class DiscreteModel(ABC):
         """The first-order right-hand side (Theta_t, Theta_tt) and its exact Jacobian at m
         instants at once.
 
-        Collocation, the implicit steppers and the Floquet monodromy need both at every step;
-        the Jacobian follows from the identities of `inertia_rows` and the loads' own Jacobian
-        (docs/model.md, "The model contract").
+        Collocation, the implicit steppers and the Floquet monodromy need both at every step.
+        Both follow from the residual (`residual_rows`), which is affine in Theta_tt: Theta_tt
+        solves M Theta_tt = -R(Theta, Theta_t, 0), and its derivatives are -M^-1 (dR/dTheta,
+        dR/dTheta_t) there (docs/model.md, "The model contract").
 
         Parameters
         ----------
@@ -314,39 +315,16 @@ class DiscreteModel(ABC):
         J : numpy.ndarray
             dF/d(Theta, Theta_t), shape (m, 2 n, 2 n); exact for S = B (docs/model.md).
         """
-        n, K = self.n, self.stiffness
-        lam, lam_dot = np.asarray(lam, dtype=float), np.asarray(lam_dot, dtype=float)
-        M, B = self.inertia_rows(theta)
-        v = self.velocity_vector(theta_t, lam)
-        torque, dL = self.load_torque_rows(theta, lam, lam_dot, jacobian=True)
-        forces = -(theta @ K.T) - torque - matvec_rows(B, v)
-        S = self.velocity_matrix_rows(theta, B)
-        if S is not B:
-            forces -= matvec_rows(S - B, theta_t**2)
-        damp = self.damping_rows(theta)
-        if damp is not None:
-            forces -= self.eta * matvec_rows(damp[0], theta_t)
-        a0 = np.linalg.solve(M, forces[..., None])[..., 0]
+        n = self.n
+        rows = self.residual_rows(theta, theta_t, np.zeros_like(theta_t), lam, lam_dot, True)
+        acc = rows.solved()
+        dq, dqt, mass = rows.blocks()
+        X = np.linalg.solve(mass, np.concatenate([dq, dqt], axis=2))
         idx = np.arange(n)
-        dr = -(K[None] + dL) + M * v[:, None, :] - B * a0[:, None, :]
-        dr[:, idx, idx] += -matvec_rows(M, v) + matvec_rows(B, a0)
-        dv = 2.0 * B * theta_t[:, None, :]
-        if self.effects.coriolis:
-            dv = dv + 2.0 * lam[:, None, None] * B
-        if damp is not None:  # d(eta Md Theta_t)/dTheta = eta (Bd diag(Theta_t) - diag(Bd Theta_t))
-            Md, Bd = damp
-            dr -= self.eta * (Bd * theta_t[:, None, :])
-            dr[:, idx, idx] += self.eta * matvec_rows(Bd, theta_t)
-            dv = dv + self.eta * Md
-        X = np.linalg.solve(M, np.concatenate([dr, dv], axis=2))
         J = np.zeros((theta.shape[0], 2 * n, 2 * n))
         J[:, idx, n + idx] = 1.0
-        J[:, n:, :n] = X[:, :, :n]
-        J[:, n:, n:] = -X[:, :, n:]
-        if damp is None:
-            J[:, n + idx, n + idx] -= self.eta
-            return np.concatenate([theta_t, a0 - self.eta * theta_t], axis=1), J
-        return np.concatenate([theta_t, a0], axis=1), J
+        J[:, n:, :] = -X
+        return np.concatenate([theta_t, acc], axis=1), J
 
     def first_order_jacobian(
         self, theta: np.ndarray, theta_t: np.ndarray, lam: float, lam_dot: float
@@ -375,6 +353,7 @@ class DiscreteModel(ABC):
         theta_tt: np.ndarray,
         lam: np.ndarray,
         lam_dot: np.ndarray,
+        jacobian: bool = False,
     ) -> ResidualRows:
         """The equation of motion as a residual at m instants, with what its blocks reuse.
 
@@ -390,6 +369,9 @@ class DiscreteModel(ABC):
             Angles [rad], their rates (1/T) and accelerations (1/T^2), shape (m, n) each.
         lam, lam_dot : numpy.ndarray
             Omega T and its rate of change at the m instants, shape (m,).
+        jacobian : bool
+            Evaluate the loads' Jacobian with the loads (the blocks will be asked for: one
+            evaluation of the loads instead of two).
 
         Returns
         -------
@@ -405,10 +387,15 @@ class DiscreteModel(ABC):
         R = matvec_rows(Mm, a) + matvec_rows(Bm, v) + theta @ self.stiffness.T
         if damp is not None:  # the damping's own mass matrix
             R += self.eta * matvec_rows(damp[0], theta_t)
-        R += self.load_torque_rows(theta, lam, lam_dot)
+        dL = None
+        if jacobian:
+            torque, dL = self.load_torque_rows(theta, lam, lam_dot, jacobian=True)
+            R += torque
+        else:
+            R += self.load_torque_rows(theta, lam, lam_dot)
         if S is not Bm:  # a model whose squared rates carry another matrix than B
             R += matvec_rows(S - Bm, theta_t * theta_t)
-        return ResidualRows(self, theta, theta_t, a, lam, lam_dot, Mm, Bm, v, damp, R)
+        return ResidualRows(self, theta, theta_t, a, lam, lam_dot, Mm, Bm, v, damp, R, dL)
 
     # --- the static problem ---------------------------------------------------------------------
     def static_rows(
@@ -520,10 +507,28 @@ class ResidualRows:
         The residual, shape (m, n), dimensionless torques.
     """
 
-    def __init__(self, model, theta, theta_t, a, lam, lam_dot, Mm, Bm, v, damp, R) -> None:
+    def __init__(self, model, theta, theta_t, a, lam, lam_dot, Mm, Bm, v, damp, R, dL=None):
         self.model, self.theta, self.theta_t, self.a = model, theta, theta_t, a
         self.lam, self.lam_dot = lam, lam_dot
         self.Mm, self.Bm, self.v, self.damp, self.R = Mm, Bm, v, damp, R
+        self.dL = dL  #: the loads' Jacobian, when `residual_rows` was asked for it
+
+    def solved(self) -> np.ndarray:
+        """The accelerations that zero the residual at these angles and rates: Theta_tt with
+        M Theta_tt = -R(Theta, Theta_t, 0) (the residual is affine in Theta_tt), after which
+        `blocks` are taken there.  Valid on rows evaluated at Theta_tt = 0.
+
+        Returns
+        -------
+        numpy.ndarray
+            Theta_tt (units of 1/T^2), shape (m, n).
+        """
+        step = np.linalg.solve(self.Mm, self.R[..., None])[..., 0]
+        self.a = self.a - step  # a = Theta_tt (+ eta Theta_t where the damping is eta M)
+        self.R = np.zeros_like(self.R)
+        if self.damp is None:
+            return self.a - self.model.eta * self.theta_t
+        return self.a
 
     def blocks(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """dR/dTheta, dR/dTheta_t and dR/dTheta_tt = M at each instant (exact for S = B: the
@@ -543,8 +548,9 @@ class ResidualRows:
         if m.effects.coriolis:
             dv = dv + 2.0 * self.lam[:, None]
         Cj = m.eta * (Mm if damp is None else damp[0]) + Bm * dv[:, None, :]
-        _, Lj = m.load_torque_rows(theta, self.lam, self.lam_dot, jacobian=True)
-        Lj += m.stiffness[None] + Bm * a[:, None, :] - Mm * v[:, None, :]
+        if self.dL is None:
+            self.dL = m.load_torque_rows(theta, self.lam, self.lam_dot, jacobian=True)[1]
+        Lj = self.dL + (m.stiffness[None] + Bm * a[:, None, :] - Mm * v[:, None, :])
         idx = np.arange(n)
         Lj[:, idx, idx] += Mv - Ba
         if damp is not None:  # d(eta Md V)/dTheta = eta (Bd diag(V) - diag(Bd V))
