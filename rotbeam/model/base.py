@@ -213,31 +213,8 @@ class DiscreteModel(ABC):
         numpy.ndarray
             Theta_tt (units of 1/T^2), shape (n,).
         """
-        return self._accelerated(theta, theta_t, lam, lam_dot)[0]
-
-    def _accelerated(self, theta, theta_t, lam, lam_dot, jacobian=False):
-        """Theta_tt and what its tangent reuses: (Theta_tt, M, B, the LU of M, the damping
-        rows or None, dL/dTheta with `jacobian` or None)."""
-        M, B = (a[0] for a in self.inertia_rows(theta[None]))
-        dL = None
-        if jacobian:
-            L, dL = (a[0] for a in self.load_torque_rows(theta[None], [lam], [lam_dot], True))
-        else:
-            L = self.load_torque_rows(theta[None], [lam], [lam_dot])[0]
-        rhs = -self.stiffness @ theta - L - B @ (theta_t**2)
-        if self.effects.coriolis:
-            rhs -= 2.0 * lam * (B @ theta_t)
-        S = self.velocity_matrix_rows(theta[None], B[None])[0]
-        if S is not B:
-            rhs -= (S - B) @ (theta_t**2)
-        damp = self.damping_rows(theta[None])
-        lu = lu_factor(M, check_finite=False)
-        if damp is None:
-            acc = lu_solve(lu, rhs, check_finite=False) - self.eta * theta_t
-            return acc, M, B, lu, None, dL
-        rhs -= self.eta * (damp[0][0] @ theta_t)
-        acc = lu_solve(lu, rhs, check_finite=False)
-        return acc, M, B, lu, (damp[0][0], damp[1][0]), dL
+        rows = self.residual_rows(theta[None], theta_t[None], None, [lam], [lam_dot])
+        return rows.solved(keep_lu=True)[0]
 
     def first_order_jvp(
         self,
@@ -251,9 +228,9 @@ class DiscreteModel(ABC):
         """The first-order right-hand side and its Jacobian times a vector, at one instant.
 
         What a tangent (variational) equation needs at every stage of a time step: J (p, q)
-        without forming J, from the directional derivatives of the equations of motion
-        (docs/stability.md, "The tangent without the Jacobian"): one more solve with the
-        mass matrix instead of 2 n of them.  Equal to `first_order_jacobian` @ (p, q) to
+        without forming J, from the residual's directional derivative (`ResidualRows.apply`;
+        docs/stability.md, "The tangent without the Jacobian"): one more solve with the mass
+        matrix instead of 2 n of them.  Equal to `first_order_jacobian` @ (p, q) to
         round-off (exact for S = B, as that Jacobian).
 
         Parameters
@@ -272,22 +249,9 @@ class DiscreteModel(ABC):
         Jv : numpy.ndarray
             dF/d(Theta, Theta_t) applied to (p, q), shape (2 n,).
         """
-        acc, M, B, lu, damp, dL = self._accelerated(theta, theta_t, lam, lam_dot, True)
-        a0 = acc + self.eta * theta_t if damp is None else acc
-        v = self.velocity_vector(theta_t, lam)
-        # dr p and dv q of `first_order_rows`, applied to p and q without forming them
-        drp = -(self.stiffness @ p) - dL @ p + M @ (v * p) - B @ (a0 * p)
-        drp += (B @ a0 - M @ v) * p
-        dvq = 2.0 * (B @ (theta_t * q))
-        if self.effects.coriolis:
-            dvq += 2.0 * lam * (B @ q)
-        if damp is not None:
-            Md, Bd = damp
-            drp -= self.eta * (Bd @ (theta_t * p) - (Bd @ theta_t) * p)
-            dvq += self.eta * (Md @ q)
-        dq = lu_solve(lu, drp - dvq, check_finite=False)
-        if damp is None:
-            dq -= self.eta * q
+        rows = self.residual_rows(theta[None], theta_t[None], None, [lam], [lam_dot], True)
+        acc = rows.solved(keep_lu=True)[0]
+        dq = -rows.mass_solve(rows.apply(p[None], q[None]))[0]
         return np.concatenate([theta_t, acc]), np.concatenate([q, dq])
 
     def first_order_rows(
@@ -316,7 +280,7 @@ class DiscreteModel(ABC):
             dF/d(Theta, Theta_t), shape (m, 2 n, 2 n); exact for S = B (docs/model.md).
         """
         n = self.n
-        rows = self.residual_rows(theta, theta_t, np.zeros_like(theta_t), lam, lam_dot, True)
+        rows = self.residual_rows(theta, theta_t, None, lam, lam_dot, True)
         acc = rows.solved()
         dq, dqt, mass = rows.blocks()
         X = np.linalg.solve(mass, np.concatenate([dq, dqt], axis=2))
@@ -350,7 +314,7 @@ class DiscreteModel(ABC):
         self,
         theta: np.ndarray,
         theta_t: np.ndarray,
-        theta_tt: np.ndarray,
+        theta_tt: np.ndarray | None,
         lam: np.ndarray,
         lam_dot: np.ndarray,
         jacobian: bool = False,
@@ -365,8 +329,12 @@ class DiscreteModel(ABC):
 
         Parameters
         ----------
-        theta, theta_t, theta_tt : numpy.ndarray
-            Angles [rad], their rates (1/T) and accelerations (1/T^2), shape (m, n) each.
+        theta, theta_t : numpy.ndarray
+            Angles [rad] and their rates (1/T), shape (m, n) each.
+        theta_tt : numpy.ndarray or None
+            Accelerations (1/T^2), shape (m, n); None: R without its inertia term
+            M (Theta_tt + eta Theta_t), the rows to solve for the accelerations
+            (`ResidualRows.solved`).
         lam, lam_dot : numpy.ndarray
             Omega T and its rate of change at the m instants, shape (m,).
         jacobian : bool
@@ -383,8 +351,12 @@ class DiscreteModel(ABC):
         v = self.velocity_vector(theta_t, lam)
         S = self.velocity_matrix_rows(theta, Bm)
         damp = self.damping_rows(theta)
-        a = theta_tt + self.eta * theta_t if damp is None else theta_tt
-        R = matvec_rows(Mm, a) + matvec_rows(Bm, v) + theta @ self.stiffness.T
+        if theta_tt is None:  # the part without M (Theta_tt + eta Theta_t): `ResidualRows.solved`
+            a = None
+            R = matvec_rows(Bm, v) + theta @ self.stiffness.T
+        else:
+            a = theta_tt + self.eta * theta_t if damp is None else theta_tt
+            R = matvec_rows(Mm, a) + matvec_rows(Bm, v) + theta @ self.stiffness.T
         if damp is not None:  # the damping's own mass matrix
             R += self.eta * matvec_rows(damp[0], theta_t)
         dL = None
@@ -512,19 +484,77 @@ class ResidualRows:
         self.lam, self.lam_dot = lam, lam_dot
         self.Mm, self.Bm, self.v, self.damp, self.R = Mm, Bm, v, damp, R
         self.dL = dL  #: the loads' Jacobian, when `residual_rows` was asked for it
+        self._lu = None  #: the LU of the one mass matrix, once `mass_solve` has made it
 
-    def solved(self) -> np.ndarray:
-        """The accelerations that zero the residual at these angles and rates: Theta_tt with
-        M Theta_tt = -R(Theta, Theta_t, 0) (the residual is affine in Theta_tt), after which
-        `blocks` are taken there.  Valid on rows evaluated at Theta_tt = 0.
+    def mass_solve(self, rhs: np.ndarray) -> np.ndarray:
+        """M^-1 rhs at each instant (by the LU `solved(keep_lu=True)` kept, if any).
+
+        Parameters
+        ----------
+        rhs : numpy.ndarray
+            Shape (m, n).
+
+        Returns
+        -------
+        numpy.ndarray
+            Shape (m, n).
+        """
+        if self._lu is not None:
+            return lu_solve(self._lu, rhs[0], check_finite=False)[None]
+        return np.linalg.solve(self.Mm, rhs[..., None])[..., 0]
+
+    def apply(self, p: np.ndarray, q: np.ndarray) -> np.ndarray:
+        """dR/dTheta p + dR/dTheta_t q at each instant without forming the blocks (the
+        identities of `DiscreteModel.inertia_rows`; exact for S = B).
+
+        Parameters
+        ----------
+        p, q : numpy.ndarray
+            Directions of the angles and of the rates, shape (m, n) each.
+
+        Returns
+        -------
+        numpy.ndarray
+            Shape (m, n), dimensionless torques.
+        """
+        m, V, a, lam = self.model, self.theta_t, self.a, self.lam
+        Mm, Bm, v, damp = self.Mm, self.Bm, self.v, self.damp
+        if self.dL is None:
+            self.dL = m.load_torque_rows(self.theta, lam, self.lam_dot, jacobian=True)[1]
+        out = p @ m.stiffness.T + matvec_rows(self.dL, p) - matvec_rows(Mm, v * p)
+        out += matvec_rows(Bm, a * p) - (matvec_rows(Bm, a) - matvec_rows(Mm, v)) * p
+        dv = 2.0 * V * q
+        if m.effects.coriolis:
+            dv = dv + 2.0 * lam[:, None] * q
+        out += matvec_rows(Bm, dv)
+        if damp is None:
+            out += m.eta * matvec_rows(Mm, q)
+        else:
+            Md, Bd = damp
+            out += m.eta * (matvec_rows(Bd, V * p) - matvec_rows(Bd, V) * p)
+            out += m.eta * matvec_rows(Md, q)
+        return out
+
+    def solved(self, keep_lu: bool = False) -> np.ndarray:
+        """The accelerations that zero the residual at these angles and rates: the residual is
+        affine in Theta_tt, R = M (Theta_tt + eta Theta_t) + R_0 (eta Md Theta_t in R_0 where
+        the damping has its own mass matrix), so Theta_tt + eta Theta_t = -M^-1 R_0; `blocks`
+        and `apply` are then taken there.  Valid on rows evaluated without Theta_tt
+        (`residual_rows(..., None, ...)`).
+
+        Parameters
+        ----------
+        keep_lu : bool
+            At one instant, keep the mass matrix's LU for a tangent's solve (`mass_solve`).
 
         Returns
         -------
         numpy.ndarray
             Theta_tt (units of 1/T^2), shape (m, n).
         """
-        step = np.linalg.solve(self.Mm, self.R[..., None])[..., 0]
-        self.a = self.a - step  # a = Theta_tt (+ eta Theta_t where the damping is eta M)
+        if keep_lu and self.Mm.shape[0] == 1:
+            self._lu = lu_factor(self.Mm[0], check_finite=False)
+        self.a = -self.mass_solve(self.R)  # Theta_tt (+ eta Theta_t where the damping is eta M)
         self.R = np.zeros_like(self.R)
         if self.damp is None:
             return self.a - self.model.eta * self.theta_t
