@@ -234,3 +234,18 @@ def test_switch_to_radau_where_the_grid_is_stiff():
         z, _ = sw.state(k * P, (k + 1) * P, z)
         assert not sw.stiff
     assert sw.name == "DOP853 (compiled)"
+
+
+def test_the_dop853_table_meets_the_order_conditions():
+    """The compiled stepper's own copy of the Dormand-Prince 8(5,3) tableau: each stage's
+    coefficients sum to its node, the weights integrate polynomials up to degree 7 exactly
+    (sum B c^(q-1) = 1/q, q = 1..8), and the 5th-order error weights E5 annihilate them up to
+    degree 4 (the difference of two solutions of order >= 5)."""
+    from rotbeam.solve import dop853_table as t
+
+    assert np.allclose(t.A.sum(axis=1), t.C, rtol=0, atol=1e-14)
+    for q in range(1, 9):
+        assert t.B @ t.C ** (q - 1) == pytest.approx(1.0 / q, rel=1e-13)
+    c = np.append(t.C, 1.0)  # E5 weighs the 12 stages and f at the new point
+    for q in range(1, 6):
+        assert abs(t.E5 @ c ** (q - 1)) < 1e-13

@@ -154,6 +154,19 @@ class DiscreteModel(ABC):
         """
         return B
 
+    def kernel(self) -> tuple[tuple | None, str]:
+        """The model as a compiled kernel reads it, if it offers one (an optional accelerator
+        of its right-hand side; `rotbeam.solve.elastica_rk` is the one rotbeam has).
+
+        Returns
+        -------
+        arguments : tuple or None
+            What the kernel reads, None where the model offers none for this scene.
+        why_not : str
+            '' with arguments, else why the model is left to the numpy path.
+        """
+        return None, f"{type(self).__name__} offers no compiled kernel"
+
     # --- the drive ------------------------------------------------------------------------------
     def drive_rows(self, tau: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """The drive lam = Omega T and lam_dot at many instants, for the row-wise methods.

@@ -135,6 +135,40 @@ class DiscreteElastica(DiscreteModel):
         B *= W
         return M, B
 
+    def kernel(self) -> tuple[tuple | None, str]:
+        """The model as `rotbeam.solve.elastica_rk.rates` reads it: its right-hand side for
+        every combination of effects (extension included: it only changes the grid's operators)
+        under a drive of harmonics.  A payload (its rotary inertia and its undamped mass), a
+        subclass such as the printed appendix, another drive law, or no numba leave the model to
+        the numpy path.
+
+        Returns
+        -------
+        arguments : tuple or None
+            (W, K, P, Q, par, harm), or None where the kernel does not cover the model.
+        why_not : str
+            '' with arguments, else the reason.
+        """
+        from .drive import HarmonicLaw
+
+        if type(self) is not DiscreteElastica:
+            return None, f"the kernel is DiscreteElastica's, not {type(self).__name__}'s"
+        if self.grid.W_beam is not None or self.rotary:
+            return None, "a payload (tip mass or inertia) is not in the kernel"
+        law = self.dl.law
+        if not isinstance(law, HarmonicLaw):
+            return None, f"the kernel's drive is a sum of harmonics, not a {type(law).__name__}"
+        try:
+            import numba  # noqa: F401
+        except ImportError:
+            return None, "numba is not installed"
+        g, ef = self.grid, self.effects
+        par = np.array([g.x0, self.hub_ratio, self.eta, law.lam0, ef.centrifugal, ef.softening,
+                        ef.euler, ef.coriolis], dtype=float)  # fmt: skip
+        harm = np.array([[k * law.omega, a, ph] for k, a, ph in law.terms], dtype=float)
+        mats = (np.ascontiguousarray(m, dtype=float) for m in (g.W, g.K, g.P, g.Q))
+        return (*mats, par, harm.reshape(-1, 3)), ""
+
     def euler_load_vector(self) -> np.ndarray:
         """dL/d(lam_dot) at Theta = 0, in closed form: the straight beam's lever arm summed by Q.
 

@@ -16,12 +16,13 @@ import math
 
 import numpy as np
 from numba import njit
-from scipy.integrate._ivp import dop853_coefficients as _dop
+
+from . import dop853_table as _dop
 
 _S = _dop.N_STAGES  # 12 stages, and the last stage's f at the new point for the error estimate
-_A = np.ascontiguousarray(_dop.A[:_S, :_S])
+_A = np.ascontiguousarray(_dop.A)
 _B = np.ascontiguousarray(_dop.B)
-_C = np.ascontiguousarray(_dop.C[:_S])
+_C = np.ascontiguousarray(_dop.C)
 _E3 = np.ascontiguousarray(_dop.E3)
 _E5 = np.ascontiguousarray(_dop.E5)
 _SAFETY, _MIN_FACTOR, _MAX_FACTOR = 0.9, 0.2, 10.0

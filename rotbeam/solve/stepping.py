@@ -322,12 +322,8 @@ def stiffest_rate(model: DiscreteModel) -> float:
 
 
 def compiled_cover(model: DiscreteModel) -> str:
-    """Whether the compiled kernel computes this model: '' if it does, else why not.
-
-    The kernel is `DiscreteElastica`'s right-hand side for every combination of effects
-    (extension included: it only changes the grid's operators) under a drive of harmonics; a
-    payload (its rotary inertia and its undamped mass), a subclass such as the printed appendix,
-    another drive law, or no numba leave the model to the numpy path.
+    """Whether the model offers a compiled kernel for its scene: '' if it does, else why not
+    (`DiscreteModel.kernel`).
 
     Parameters
     ----------
@@ -339,24 +335,11 @@ def compiled_cover(model: DiscreteModel) -> str:
     str
         '' or the reason.
     """
-    from ..model.drive import HarmonicLaw
-    from ..model.elastica import DiscreteElastica
-
-    if type(model) is not DiscreteElastica:
-        return f"the kernel is DiscreteElastica's, not {type(model).__name__}'s"
-    if model.grid.W_beam is not None or model.rotary:
-        return "a payload (tip mass or inertia) is not in the kernel"
-    if not isinstance(model.dl.law, HarmonicLaw):
-        return f"the kernel's drive is a sum of harmonics, not a {type(model.dl.law).__name__}"
-    try:
-        import numba  # noqa: F401
-    except ImportError:
-        return "numba is not installed"
-    return ""
+    return model.kernel()[1]
 
 
 def kernel_arguments(model: DiscreteModel) -> tuple:
-    """The model as the compiled kernel reads it.
+    """The model as the compiled kernel reads it (`DiscreteModel.kernel`).
 
     Parameters
     ----------
@@ -367,13 +350,16 @@ def kernel_arguments(model: DiscreteModel) -> tuple:
     -------
     tuple
         W, K, P, Q, par, harm (`rotbeam.solve.elastica_rk.rates`).
+
+    Raises
+    ------
+    ValueError
+        For a model that offers no kernel for its scene (the reason in the message).
     """
-    g, ef, law = model.grid, model.effects, model.dl.law
-    par = np.array([g.x0, model.hub_ratio, model.eta, law.lam0, ef.centrifugal, ef.softening,
-                    ef.euler, ef.coriolis], dtype=float)  # fmt: skip
-    harm = np.array([[k * law.omega, a, ph] for k, a, ph in law.terms], dtype=float)
-    mats = (np.ascontiguousarray(m, dtype=float) for m in (g.W, g.K, g.P, g.Q))
-    return (*mats, par, harm.reshape(-1, 3))
+    arguments, why_not = model.kernel()
+    if arguments is None:
+        raise ValueError(why_not)
+    return arguments
 
 
 def explicit_stepper(model: DiscreteModel, rtol: float, atol: np.ndarray) -> PeriodStepper:
