@@ -13,7 +13,8 @@ from conftest import steady
 from rotbeam.model.criterion import rms
 from rotbeam.model.elastica import DiscreteElastica
 from rotbeam.model.modes import linear_forced_response
-from rotbeam.model.params import Beam, Dimensionless, Drive
+from rotbeam.model.params import Beam, Dimensionless, Drive, Effects
+from rotbeam.runs.nonlinear import branch_model
 from rotbeam.solve.beam_branch import BeamBranchProblem, beam_branch
 from rotbeam.solve.periodic import solve_periodic
 
@@ -24,7 +25,8 @@ def test_small_amplitude_branch_is_the_fixed_frequency_orbits_and_the_linear_res
     linear forced response's within 1 %, f_d grows monotonically (no fold) and all are stable.
     (At a = 0.1 the resonant orbit, y_m / L = 0.067 RMS, is already 3 % off the linear one.)"""
     beam, N = Beam(), 6
-    bb = beam_branch(beam, 5.0, 0.02, (6.0, 7.5), N=N, tail_tol=1e-6, ds=0.1, ds_max=0.4)
+    model = branch_model(beam, 5.0, 0.02, 6.0, Effects(), N)
+    bb = beam_branch(model, beam.T, (6.0, 7.5), tail_tol=1e-6, ds=0.1, ds_max=0.4)
     pts = bb.branch.points
     assert bb.branch.message.startswith("left the range") and len(pts) > 8
     assert not bb.branch.folds()

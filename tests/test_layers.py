@@ -142,3 +142,35 @@ def test_the_check_can_fail():
     ok = "from .criterion import rms\nfrom ..model import params\nimport rotbeam.model.modes\n"
     assert violations(ok, "rotbeam.model.surrogate") == []
     assert violations("from .model.params import Beam\n", "rotbeam.cli") == []
+
+
+#: what a solver must not name: a model class or a drive law (it sees `DiscreteModel` and
+#: `dl.lam`, `dl.lam_dot` only: README "Layout")
+MODEL_AND_DRIVE_CLASSES = {"DiscreteElastica", "PrintedElastica", "HarmonicLaw", "MoveLaw"}
+
+
+def named_classes(source: str) -> set[str]:
+    """Every identifier a module's code uses (names, attributes, imported names), docstrings
+    and comments left out."""
+    out = set()
+    for node in ast.walk(ast.parse(source)):
+        if isinstance(node, ast.Name):
+            out.add(node.id)
+        elif isinstance(node, ast.Attribute):
+            out.add(node.attr)
+        elif isinstance(node, (ast.Import, ast.ImportFrom)):
+            out.update(alias.name.split(".")[-1] for alias in node.names)
+    return out
+
+
+def test_no_solver_names_a_model_class_or_a_drive_law():
+    bad = {
+        path.name: sorted(named_classes(path.read_text()) & MODEL_AND_DRIVE_CLASSES)
+        for path in sorted((PACKAGE / "solve").glob("*.py"))
+    }
+    assert {k: v for k, v in bad.items() if v} == {}
+    # the check can fail
+    assert named_classes("from ..model.elastica import DiscreteElastica\nx = HarmonicLaw") >= {
+        "DiscreteElastica",
+        "HarmonicLaw",
+    }

@@ -82,6 +82,33 @@ def _stop_after_unstable(beyond: int):
     return stop
 
 
+def branch_model(
+    beam: Beam, omega0: float, amplitude: float, f_d: float, effects: Effects, N: int
+) -> DiscreteElastica:
+    """The discrete elastica of the sine drive a branch in f_d follows
+    (`rotbeam.solve.beam_branch.beam_branch` replaces its drive frequency point by point).
+
+    Parameters
+    ----------
+    beam : Beam
+        The beam (SI units).
+    omega0, amplitude : float
+        Omega_0 and a [rad/s].
+    f_d : float
+        A drive frequency [Hz] (the branch's start).
+    effects : Effects
+        Effects of the model.
+    N : int
+        Grid intervals.
+
+    Returns
+    -------
+    DiscreteElastica
+    """
+    drive = Drive(omega0=omega0, f_d=f_d, amplitude=amplitude)
+    return DiscreteElastica(Dimensionless.from_physical(beam, drive, effects), N)
+
+
 def branch_arm(beam: Beam, spec: NonlinearSpec, arm: str, effects: Effects) -> BeamBranch:
     """One arm of the branch, stopped `spec.beyond` points past its first unstable point.
 
@@ -114,7 +141,8 @@ def branch_arm(beam: Beam, spec: NonlinearSpec, arm: str, effects: Effects) -> B
         shift = k * spec.sweep_step
         f_range = (lo + shift, hi) if ARMS[arm] > 0 else (lo, hi - shift)
         try:
-            return beam_branch(beam, spec.omega0, spec.amplitude, f_range, effects, N=spec.N,
+            model = branch_model(beam, spec.omega0, spec.amplitude, f_range[0], effects, spec.N)
+            return beam_branch(model, beam.T, f_range,
                                tail_tol=spec.tail_tol, ds=spec.ds, ds_max=spec.ds_max,
                                max_points=spec.max_points, direction=ARMS[arm],
                                stop=_stop_after_unstable(spec.beyond))  # fmt: skip

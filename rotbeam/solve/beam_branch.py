@@ -16,8 +16,7 @@ import numpy as np
 
 from ..model.base import DiscreteModel
 from ..model.criterion import rms
-from ..model.elastica import DiscreteElastica
-from ..model.params import Beam, Dimensionless, Drive, Effects
+from ..model.params import Dimensionless
 from .continuation import Branch, BranchProblem, continue_branch
 from .floquet import FloquetResult, beam_floquet
 from .periodic import Collocation, solve_periodic_adaptive
@@ -186,12 +185,9 @@ class BeamBranch:
 
 
 def start_orbit(
-    beam: Beam,
-    omega0: float,
-    amplitude: float,
+    model: DiscreteModel,
+    T: float,
     f_d: float,
-    effects: Effects | None = None,
-    N: int = 10,
     tail_tol: float = 1e-5,
     M0: int = 17,
     M_max: int = 65,
@@ -200,18 +196,12 @@ def start_orbit(
 
     Parameters
     ----------
-    beam : Beam
-        The beam (SI units).
-    omega0 : float
-        Mean angular velocity Omega_0 [rad/s].
-    amplitude : float
-        Drive amplitude a [rad/s].
+    model : DiscreteModel
+        The model of the scene (any drive frequency: it is replaced by `f_d`).
+    T : float
+        The beam's time scale [s]: the drive's omega = 2 pi f_d T.
     f_d : float
         Drive frequency of the first orbit [Hz].
-    effects : Effects or None
-        Effects of the model; None: the defaults.
-    N : int
-        Grid intervals.
     tail_tol : float
         Harmonic tail the first orbit must reach (`solve_periodic_adaptive`).
     M0 : int
@@ -222,7 +212,7 @@ def start_orbit(
     Returns
     -------
     problem : BeamBranchProblem
-        The model at f_d, its time scale T [s] and M.
+        The model, its time scale T [s] and M.
     x0 : numpy.ndarray
         The orbit Theta [rad], shape (M n,) flattened.
     tail : float
@@ -233,25 +223,18 @@ def start_orbit(
     RuntimeError
         When collocation finds no orbit at f_d.
     """
-    effects = effects if effects is not None else Effects()
-    dl = Dimensionless.from_physical(
-        beam, Drive(omega0=omega0, f_d=f_d, amplitude=amplitude), effects
-    )
-    model = DiscreteElastica(dl, N)
-    res = solve_periodic_adaptive(model, M0=M0, tail_tol=tail_tol, M_max=M_max)
+    problem = BeamBranchProblem(model, T, M0)
+    at = model.at(problem.dimensionless(f_d))
+    res = solve_periodic_adaptive(at, M0=M0, tail_tol=tail_tol, M_max=M_max)
     if not res.converged:
         raise RuntimeError(f"no periodic orbit at f_d = {f_d:g} Hz to start from: {res.message}")
-    problem = BeamBranchProblem(model, beam.T, res.M)
-    return problem, res.theta.T.ravel(), res.harmonic_tail
+    return BeamBranchProblem(at, T, res.M), res.theta.T.ravel(), res.harmonic_tail
 
 
 def beam_branch(
-    beam: Beam,
-    omega0: float,
-    amplitude: float,
+    model: DiscreteModel,
+    T: float,
     f_range: tuple[float, float],
-    effects: Effects | None = None,
-    N: int = 10,
     tail_tol: float = 1e-5,
     ds: float = 0.02,
     ds_max: float = 0.1,
@@ -271,18 +254,12 @@ def beam_branch(
 
     Parameters
     ----------
-    beam : Beam
-        The beam (SI units).
-    omega0 : float
-        Mean angular velocity Omega_0 [rad/s].
-    amplitude : float
-        Drive amplitude a [rad/s].
+    model : DiscreteModel
+        The model of the scene (its drive frequency is replaced along the branch).
+    T : float
+        The beam's time scale [s]: the drive's omega = 2 pi f_d T.
     f_range : tuple of float
         (f_lo, f_hi) [Hz]: the branch starts at one end and stops outside the range.
-    effects : Effects or None
-        Effects of the model; None: the defaults.
-    N : int
-        Grid intervals.
     tail_tol : float
         Harmonic tail that fixes M at the first orbit (`start_orbit`).
     ds : float
@@ -314,7 +291,7 @@ def beam_branch(
     """
     lo, hi = min(f_range), max(f_range)
     f0 = lo if direction > 0 else hi
-    problem, x0, tail = start_orbit(beam, omega0, amplitude, f0, effects, N, tail_tol)
+    problem, x0, tail = start_orbit(model, T, f0, tail_tol)
     if x_scale is None:
         size = float(np.sqrt(np.mean(x0 * x0)))
         x_scale = 1.0 / size if size > 0 else 1.0
