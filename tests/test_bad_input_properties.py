@@ -11,8 +11,6 @@ draws: `DRAWS` per test, `test_the_draws_are_counted` holds the total.
 
 from __future__ import annotations
 
-import contextlib
-import io
 import math
 from pathlib import Path
 
@@ -20,8 +18,8 @@ import pytest
 import yaml
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
+from test_bad_input import run_main
 
-from rotbeam.cli.main import main
 from rotbeam.cli.options import flag_name
 from rotbeam.config.errors import RotbeamInputError
 from rotbeam.config.parameters import SECTIONS
@@ -35,16 +33,6 @@ FIELDS = [(s, n) for s, fields in SECTIONS.items() for n, p in fields.items() if
 #: examples per test (the closing note's count is their sum)
 DRAWS = {"flags": 150, "scene keys": 150, "constructors": 150, "csv": 120, "yaml": 80}
 SETTINGS = {"deadline": None, "suppress_health_check": [HealthCheck.function_scoped_fixture]}
-
-
-def run_cli(argv: list[str]) -> tuple[int, str, str]:
-    out, err = io.StringIO(), io.StringIO()
-    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
-        try:
-            rc = main(argv)
-        except SystemExit as exc:
-            rc = exc.code
-    return rc, out.getvalue(), err.getvalue()
 
 
 def one_line(rc: int, out: str, err: str) -> str:
@@ -136,7 +124,7 @@ def test_a_scene_key_is_refused_naming_it(case, tmp_path):
         return  # YAML writes .nan and .inf: read back as the same value, checked above
     path = tmp_path / "scene.yaml"
     path.write_text(yaml.safe_dump({section: {name: value}}))
-    line = one_line(*run_cli(["simulate", "--scene", str(path), "--quiet"]))
+    line = one_line(*run_main(["simulate", "--scene", str(path), "--quiet"]))
     assert f"{section}.{name}" in line, line
 
 
@@ -147,14 +135,14 @@ def test_a_flag_is_refused_naming_it(case):
     flag = flag_name(section, name)
     if section == "effects":  # the command line sets effects by name: --effects a,b
         argv = ["simulate", "--effects", f"{value}"]
-        line = one_line(*run_cli(argv))
+        line = one_line(*run_main(argv))
         assert "--effects" in line, line
         return
     if SECTIONS[section][name].kind == "bool":  # --flag / --no-flag take no value
         argv = ["simulate", f"{flag}={value}"]
     else:
         argv = ["simulate", flag, str(value)]
-    line = one_line(*run_cli(argv))
+    line = one_line(*run_main(argv))
     assert flag in line, line
 
 
@@ -184,7 +172,7 @@ def test_a_malformed_drive_file_is_refused_naming_it(text, kind, tmp_path):
         return
     argv = ["simulate", f"--{kind}", str(path), "--quiet"] + (["--fd", "1"] if kind == "profile"
                                                                else [])  # fmt: skip
-    line = one_line(*run_cli(argv))
+    line = one_line(*run_main(argv))
     assert "drive.csv" in line, line
 
 
@@ -200,7 +188,7 @@ YAML_TEXTS = st.one_of(
 def test_a_malformed_scene_file_is_one_line(text, tmp_path):
     path = tmp_path / "scene.yaml"
     path.write_text(text, encoding="utf-8", errors="surrogatepass")
-    rc, out, err = run_cli(["simulate", "--scene", str(path), "--quiet", "--omega0", "5",
+    rc, out, err = run_main(["simulate", "--scene", str(path), "--quiet", "--omega0", "5",
                             "--fd", "2", "--N", "6", "--max-seconds", "5"])  # fmt: skip
     if rc != 2:  # valid YAML that is a valid (empty or partial) scene: it answers
         assert rc in (0, 1) and "Traceback" not in err, err

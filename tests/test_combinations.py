@@ -27,8 +27,6 @@ takes 34 s on two workers).
 
 from __future__ import annotations
 
-import contextlib
-import io
 import json
 from dataclasses import replace
 from pathlib import Path
@@ -37,11 +35,11 @@ import numpy as np
 import pytest
 import yaml
 from chain_model import ChainModel
+from test_bad_input import run_main
 
 import rotbeam
 from rotbeam.analysis.effect_budget import auto_scene
 from rotbeam.analysis.verdict import critical_start_hz
-from rotbeam.cli.main import main
 from rotbeam.config.errors import RotbeamInputError
 from rotbeam.model.params import tip_loaded_root
 from rotbeam.runs.move import simulate_move
@@ -113,17 +111,6 @@ def spec(drive: str, beam: str, effects: str) -> dict:
     return out
 
 
-def run_cli(argv: list[str]) -> tuple[int, str, str]:
-    """rotbeam's command line in-process: (exit status, stdout, stderr)."""
-    out, err = io.StringIO(), io.StringIO()
-    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
-        try:
-            rc = main(argv)
-        except SystemExit as exc:
-            rc = exc.code
-    return rc, out.getvalue(), err.getvalue()
-
-
 def cli_args(command: str, drive: str, effects: str, path: Path) -> list[str]:
     args = [command, "--scene", str(path), "--json", "--quiet"]
     if effects == "auto":
@@ -178,7 +165,7 @@ def test_cell(cell, folder, tmp_path):
         if isinstance(s["drive"].get(key), str):
             s["drive"][key] = str(folder / s["drive"][key])
     path.write_text(yaml.safe_dump(s))
-    rc, out, err = run_cli(cli_args(command, drive, effects, path))
+    rc, out, err = run_main(cli_args(command, drive, effects, path))
     words = refusal(command, drive, effects)
     if words is not None:
         assert rc == 2 and out == "" and "Traceback" not in err, (rc, err)
@@ -266,7 +253,7 @@ def test_modes_cell(beam, tmp_path):
     mass, first order in its rotary inertia: 1e-3 and 5e-3 at N = 40)."""
     path = tmp_path / "beam.yaml"
     path.write_text(yaml.safe_dump({"beam": BEAMS[beam]}))
-    rc, out, err = run_cli(["modes", "--scene", str(path), "--json"])
+    rc, out, err = run_main(["modes", "--scene", str(path), "--json"])
     assert rc == 0, err
     b = rotbeam.Beam(**BEAMS[beam])
     f1 = json.loads(out)["frequencies_hz"][0]
@@ -277,7 +264,7 @@ def test_modes_cell(beam, tmp_path):
 
 @pytest.mark.parametrize("flag", [["--move", "m.csv"], ["--fd", "2"], ["--effects", "auto"]])
 def test_modes_refuses_what_it_does_not_read(flag):
-    rc, out, err = run_cli(["modes", *flag])
+    rc, out, err = run_main(["modes", *flag])
     assert rc == 2 and out == "" and len(err.strip().splitlines()) == 1, err
     assert "unrecognized arguments" in err and flag[0] in err
 

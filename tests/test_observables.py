@@ -17,11 +17,11 @@ from rotbeam.runs.observables import (
     OBSERVABLES,
     States,
     observable_names,
-    periodic_rates,
     tip_acceleration_components,
 )
 from rotbeam.runs.scene import build_scene, simulate
 from rotbeam.solve.quasistatic import quasistatic_series, solve_static
+from rotbeam.solve.spectral import periodic_rates
 
 #: only the Euler load (and damping, which a static state does not feel)
 EULER_ONLY = {"centrifugal": False, "softening": False, "euler": True, "coriolis": False,

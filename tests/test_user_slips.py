@@ -5,17 +5,15 @@ independent answer: the closed-form clamp strain, the profile's own samples."""
 
 from __future__ import annotations
 
-import contextlib
-import io
 import json
 import math
 
 import numpy as np
 import pytest
 import yaml
+from test_bad_input import run_main
 
 import rotbeam
-from rotbeam.cli.main import main
 from rotbeam.config.errors import RotbeamInputError
 from rotbeam.model.params import CLAMP_STRAIN_LIMIT, clamp_strain
 from rotbeam.runs.move import simulate_move
@@ -25,13 +23,7 @@ S_CURVE = {"shape": "s-curve", "omega_min": 0.0, "omega_max": 20.0, "ramp": 0.2}
 
 
 def run_cli(*argv: str) -> tuple[int, str, str]:
-    out, err = io.StringIO(), io.StringIO()
-    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
-        try:
-            rc = main(list(argv))
-        except SystemExit as exc:
-            rc = exc.code
-    return rc, out.getvalue(), err.getvalue()
+    return run_main(list(argv))
 
 
 def refused(rc: int, out: str, err: str, *words: str) -> str:

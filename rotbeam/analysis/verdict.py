@@ -23,7 +23,7 @@ from ..config.errors import RotbeamInputError
 from ..config.threads import one_blas_thread
 from ..model.modes import damping_ratio, resonance_frequency_hz
 from ..model.params import Drive
-from ..model.secondorder import c0_root, delta_rms_harmonics, first_crossing
+from ..model.secondorder import c0_root, delta_rms_harmonics, first_crossing, inverse_gain2
 from ..runs.move import SETTLED, MoveResult
 from ..runs.observables import criterion_name
 from ..runs.scene import Scene, SceneResult, simulate
@@ -268,7 +268,7 @@ def _estimate_note(orders: tuple[int, ...], loads: tuple[float, ...], zeta: floa
         return " = c_0 f_0" if k == 1 else f" = c_0 f_0 / {k}"
     r = np.asarray(orders, dtype=float) * ratio
     w = np.asarray(loads) ** 2
-    share = w * np.abs(1.0 / ((1.0 - r * r) ** 2 + (2.0 * zeta * r) ** 2) - 1.0)
+    share = w * np.abs(1.0 / inverse_gain2(r, zeta) - 1.0)
     i = int(np.argmax(share))
     return (f" ({len(orders)} harmonics through the first mode; mostly harmonic {orders[i]}, at "
             f"{orders[i]} f_d* = {r[i]:.3g} f_0{lag})")  # fmt: skip

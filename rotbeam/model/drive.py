@@ -496,6 +496,17 @@ class MoveLaw(DriveLaw):
         """The move's length [units of T]."""
         return self.tau[-1] - self.tau[0]
 
+    def dense(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """The move sampled at DENSE equispaced instants of its duration, by the spline at once.
+
+        Returns
+        -------
+        tau, lam, lam_dot : numpy.ndarray
+            Instants (units of T) from 0, and lam, lam_dot there; shape (DENSE,) each.
+        """
+        tau = np.arange(DENSE) * (self.period / DENSE)
+        return tau, self._curve[0](tau), self._curve[1](tau)
+
     def lam(self, tau: float) -> float:
         """The rotation rate at one instant (the end values outside the move).
 

@@ -541,9 +541,8 @@ class Drive:
         amplitude)."""
         if self.kind == "sine":
             return self.amplitude
-        law = self.law(1.0)
-        mean = self.mean_speed
-        return float(np.max(np.abs(law.dense()[1] - mean)))
+        law = self.law(1.0)  # one law: its mean is mean_speed (Omega_0 for harmonics)
+        return float(np.max(np.abs(law.dense()[1] - law.mean)))
 
     def law(self, T: float) -> DriveLaw:
         """The drive in the model's units: lam(tau) = Omega(tau T) T.

@@ -27,6 +27,25 @@ def _check_zeta(zeta: float) -> float:
     return z
 
 
+def inverse_gain2(r: float | np.ndarray, zeta: float) -> float | np.ndarray:
+    """1 / |H(r)|^2 = (1 - r^2)^2 + (2 zeta r)^2: the canonical oscillator's static-to-dynamic
+    amplitude ratio, squared, at the frequency ratio r (H(r) = 1 / (1 - r^2 + 2 i zeta r)).
+
+    Parameters
+    ----------
+    r : float or numpy.ndarray
+        Frequency ratio f / f_n, dimensionless, any shape.
+    zeta : float
+        Damping ratio, dimensionless (not checked here: the callers check it).
+
+    Returns
+    -------
+    float or numpy.ndarray
+        The shape of `r`, dimensionless.
+    """
+    return (1.0 - r * r) ** 2 + (2.0 * zeta * r) ** 2
+
+
 def delta_rms_canonical(c0: float | np.ndarray, zeta: float) -> float | np.ndarray:
     """Signed Delta RMS of the canonical oscillator, 1 - sqrt((1 - c0^2)^2 + (2 zeta c0)^2).
 
@@ -54,7 +73,7 @@ def delta_rms_canonical(c0: float | np.ndarray, zeta: float) -> float | np.ndarr
     """
     z = _check_zeta(zeta)
     c = np.asarray(c0, dtype=float)
-    out = 1.0 - np.sqrt((1.0 - c * c) ** 2 + (2.0 * z * c) ** 2)
+    out = 1.0 - np.sqrt(inverse_gain2(c, z))
     return float(out) if np.ndim(out) == 0 else out
 
 
@@ -241,7 +260,7 @@ def delta_rms_harmonics(
     k, w = _loads(orders, loads)
     c = np.asarray(ratio, dtype=float)
     r = c[..., None] * k
-    gain2 = (1.0 - r * r) ** 2 + (2.0 * z * r) ** 2  # 1 / |H(r)|^2
+    gain2 = inverse_gain2(r, z)
     with np.errstate(divide="ignore"):
         dynamic = np.sum(w / gain2, axis=-1)  # sum F_k^2 |H|^2: inf at an undamped resonance
     out = 1.0 - np.sqrt(np.sum(w) / dynamic)

@@ -114,3 +114,30 @@ def harmonic_tail(X: np.ndarray) -> float:
         return 0.0
     k = C.shape[0]
     return float(np.sqrt(np.sum(C[k // 2 :] ** 2)) / total)
+
+
+def periodic_rates(theta: np.ndarray, period: float) -> tuple[np.ndarray, np.ndarray]:
+    """Rates and accelerations of a periodic series, spectrally (the derivative of its
+    trigonometric interpolant; an even count's Nyquist harmonic is dropped).
+
+    Parameters
+    ----------
+    theta : numpy.ndarray
+        m equispaced samples of one period along the last axis, shape (..., m).
+    period : float
+        The period, in units of T.
+
+    Returns
+    -------
+    theta_t, theta_tt : numpy.ndarray
+        d/dtau and d^2/dtau^2, the shape of `theta`.
+    """
+    theta = np.asarray(theta, dtype=float)
+    m = theta.shape[-1]
+    C = np.fft.rfft(theta, axis=-1)
+    w = 2.0 * math.pi / period * np.arange(C.shape[-1])
+    if m % 2 == 0:
+        w[-1] = 0.0
+    first = np.fft.irfft(1j * w * C, n=m, axis=-1)
+    second = np.fft.irfft(-(w**2) * C, n=m, axis=-1)
+    return first, second
