@@ -73,7 +73,7 @@ def test_root_moment_verdict_is_the_observables_delta_rms():
     assert d["criterion"] == "root_moment"
     assert d["criterion_delta_rms"] == d["observables"]["root_moment"]["delta_rms"]
     assert d["criterion_delta_rms"] == pytest.approx(v.delta_rms, rel=1e-12)
-    assert d["delta_rms"] == pytest.approx(res.delta_rms, rel=1e-12)  # the summary's delta_rms is y_m's
+    assert d["delta_rms"] == pytest.approx(res.delta_rms, rel=1e-12)  # the summary's: y_m's
 
 
 def test_critical_on_root_moment_meets_a_separate_run():
