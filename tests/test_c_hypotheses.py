@@ -11,6 +11,7 @@ from rotbeam.config.errors import RotbeamInputError
 from rotbeam.model.elastica import DiscreteElastica
 from rotbeam.model.modes import resonance_frequency_hz
 from rotbeam.model.params import Beam, Dimensionless, Drive, omega0_for_cmax
+from rotbeam.model.static_bvp import solve_static_bvp
 from rotbeam.paper.c_hypotheses import (
     GridRule,
     Hypothesis,
@@ -24,7 +25,6 @@ from rotbeam.paper.c_hypotheses import (
 from rotbeam.paper.c_response import continuum_quasistatic_theta
 from rotbeam.paper.printed_model import PrintedElastica
 from rotbeam.solve.numerics import Numerics
-from rotbeam.solve.static_bvp import solve_static_bvp
 
 BEAM = Beam()
 SCAN = ScanSpec(c_max=(1.0,), N=20, lo=0.15, hi=0.5, points=8)

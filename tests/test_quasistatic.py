@@ -6,8 +6,8 @@ from conftest import elastica
 
 from rotbeam.model.elastica import DiscreteElastica
 from rotbeam.model.params import Dimensionless, Effects
+from rotbeam.model.static_bvp import solve_static_bvp
 from rotbeam.solve.quasistatic import quasistatic_series, solve_static
-from rotbeam.solve.static_bvp import solve_static_bvp
 
 
 def linear_cantilever(s, hub, lam_dot):

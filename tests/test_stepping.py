@@ -89,11 +89,11 @@ EFFECTS = [
 def test_compiled_kernel_is_the_numpy_model(effects):
     """The compiled right-hand side and tangent equal the numpy model's (`acceleration`,
     `first_order_jvp`) to round-off, for every combination of effects it covers."""
-    from rotbeam.solve import elastica_rk
+    from rotbeam.model import elastica_kernel as elastica_rk
 
     m = DiscreteElastica(scene_dl(effects), 9)
     assert stepping.compiled_cover(m) == ""
-    n, args = m.n, stepping.kernel_arguments(m)
+    n, args = m.n, stepping.model_kernel(m).arguments
     for seed in range(3):
         th, tt, p, q = random_point(n, seed)
         t = 0.37 + seed
@@ -241,7 +241,7 @@ def test_the_dop853_table_meets_the_order_conditions():
     coefficients sum to its node, the weights integrate polynomials up to degree 7 exactly
     (sum B c^(q-1) = 1/q, q = 1..8), and the 5th-order error weights E5 annihilate them up to
     degree 4 (the difference of two solutions of order >= 5)."""
-    from rotbeam.solve import dop853_table as t
+    from rotbeam.model import dop853_table as t
 
     assert np.allclose(t.A.sum(axis=1), t.C, rtol=0, atol=1e-14)
     for q in range(1, 9):

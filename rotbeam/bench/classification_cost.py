@@ -201,7 +201,7 @@ class _Tangent(stepping.PeriodStepper):
 
 _FIRST_CALL = (
     "import time\nt0 = time.perf_counter()\nimport numpy as np\n"
-    "from rotbeam.solve import elastica_rk\nt1 = time.perf_counter()\n"
+    "from rotbeam.model import elastica_kernel as elastica_rk\nt1 = time.perf_counter()\n"
     "y = np.zeros(4); s = np.empty((1, 4)); c = np.zeros(3, dtype=np.int64)\n"
     "m = (np.eye(2), np.eye(2), np.ones((3, 2)), np.ones((2, 3)), np.zeros(8),\n"
     "     np.zeros((1, 3)))\n"

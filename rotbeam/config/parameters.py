@@ -140,6 +140,10 @@ SECTIONS: dict[str, dict[str, Param]] = {
         ),  # fmt: skip
         "jacobian": _choice("exact", "Jacobian of the stepper", "exact", "fd"),
         "extrapolate": _bool(False, "Richardson-extrapolate RMS from N and N // 2"),
+        "model": _choice(
+            "elastica", "the discrete model: the full elastica or its modes", "elastica", "modal"
+        ),  # fmt: skip
+        "modes": _int(3, "modes of the modal model (numerics.model: modal)", 1, 1999),
     },
 }
 

@@ -12,12 +12,13 @@ import math
 import numpy as np
 
 from ..config.errors import RotbeamInputError
-from .base import DiscreteModel
+from .base import Kernel
 from .grid import Grid, centrifugal_strain, check_N
+from .gyroscopic import GyroscopicModel
 from .params import Dimensionless
 
 
-class DiscreteElastica(DiscreteModel):
+class DiscreteElastica(GyroscopicModel):
     """The rotating elastica on an N-interval grid: loads, exact Jacobians, mass matrices.
 
     The model every run of rotbeam uses: M = W cos, B = W sin with W = Q P, the bending
@@ -135,8 +136,13 @@ class DiscreteElastica(DiscreteModel):
         B *= W
         return M, B
 
-    def kernel(self) -> tuple[tuple | None, str]:
-        """The model as `rotbeam.solve.elastica_rk.rates` reads it: its right-hand side for
+    @property
+    def label(self) -> str:
+        """'N = 40': the grid, for messages."""
+        return f"N = {self.N}"
+
+    def kernel(self) -> tuple[Kernel | None, str]:
+        """The compiled DOP853 march of `rotbeam.model.elastica_kernel`: its right-hand side for
         every combination of effects (extension included: it only changes the grid's operators)
         under a drive of harmonics.  A payload (its rotary inertia and its undamped mass), a
         subclass such as the printed appendix, another drive law, or no numba leave the model to
@@ -144,8 +150,8 @@ class DiscreteElastica(DiscreteModel):
 
         Returns
         -------
-        arguments : tuple or None
-            (W, K, P, Q, par, harm), or None where the kernel does not cover the model.
+        kernel : Kernel or None
+            The march and (W, K, P, Q, par, harm), or None where it does not cover the model.
         why_not : str
             '' with arguments, else the reason.
         """
@@ -167,7 +173,10 @@ class DiscreteElastica(DiscreteModel):
                         ef.euler, ef.coriolis], dtype=float)  # fmt: skip
         harm = np.array([[k * law.omega, a, ph] for k, a, ph in law.terms], dtype=float)
         mats = (np.ascontiguousarray(m, dtype=float) for m in (g.W, g.K, g.P, g.Q))
-        return (*mats, par, harm.reshape(-1, 3)), ""
+        from . import elastica_kernel  # here: numba loads with the first compiled run only
+
+        arguments = (*mats, par, harm.reshape(-1, 3))
+        return Kernel(elastica_kernel.advance, elastica_kernel.rates, arguments), ""
 
     def euler_load_vector(self) -> np.ndarray:
         """dL/d(lam_dot) at Theta = 0, in closed form: the straight beam's lever arm summed by Q.

@@ -198,10 +198,9 @@ def linear_forced_response(model: DiscreteModel, K: int = 8) -> dict[int, np.nda
         Theta(tau) = Re sum_k Theta_k exp(i k omega tau).
     """
     dl = model.dl
-    lam = dl.lam0 if dl.effects.centrifugal else 0.0
+    lam = dl.lam0  # without the centrifugal load the stiffness does not depend on it
     mass, stiffness, q = model.linear_operators(lam)
-    damp = model.damping_rows(np.zeros((1, model.n)))
-    damped = mass if damp is None else damp[0][0]
+    damping = model.linear_damping(lam)
     w = dl.omega
     c = dl.law.coefficients(K)
     out = {}
@@ -211,7 +210,7 @@ def linear_forced_response(model: DiscreteModel, K: int = 8) -> dict[int, np.nda
         kw = k * w
         d = (1j * kw) * c[k]  # the harmonic of lam_dot
         # the gyroscopic (Coriolis) matrix vanishes on the straight beam: no term here
-        A = stiffness - kw * kw * mass + 1j * kw * model.eta * damped
+        A = stiffness - kw * kw * mass + 1j * kw * damping
         out[k] = np.linalg.solve(A, -(d * q))
     return out
 
@@ -234,36 +233,6 @@ def resonance_frequency_hz(beam: Beam, omega_max: float, N: int = 80) -> float:
     float
     """
     return float(modes(beam, omega_max, 1, N, softening=True)[0])
-
-
-def first_mode_damped_share(model: DiscreteModel, lam: float) -> tuple[float, float]:
-    """The first frequency at `lam`, and the share of the first mode's mass that is damped.
-
-    The damping acts on the beam's own mass Md (`DiscreteModel.damping_rows`), not on a
-    payload's; to first order in eta the first mode decays at eta s / 2 with
-    s = psi' Md phi / psi' M phi, phi and psi its right and left eigenvectors (exact for Md = M).
-
-    Parameters
-    ----------
-    model : DiscreteModel
-        A model with a payload (its `damping_rows` is not None).
-    lam : float
-        Omega T, dimensionless.
-
-    Returns
-    -------
-    w1 : float
-        The first angular frequency, in units of 1/T.
-    share : float
-        s, in (0, 1].
-    """
-    mass, stiffness, _ = model.linear_operators(lam)
-    damped = model.damping_rows(np.zeros((1, model.n)))[0][0]
-    w2, left, right = sla.eig(stiffness, mass, left=True, right=True)
-    k = int(np.argmin(np.real(w2)))
-    phi, psi = right[:, k], left[:, k].conj()
-    share = float(np.real((psi @ damped @ phi) / (psi @ mass @ phi)))
-    return math.sqrt(max(float(np.real(w2[k])), 0.0)), share
 
 
 def damping_ratio(beam: Beam) -> float:

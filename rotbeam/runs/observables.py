@@ -92,17 +92,44 @@ class Observable:
         """
         if self.rates and (states.theta_t is None or states.theta_tt is None):
             raise ValueError(f"observable {self.name} needs the rates and accelerations")
-        return np.atleast_1d(np.asarray(self.function(model, beam, states), dtype=float))
+        values = self.function(model, beam, on_the_beam(model, states))
+        return np.atleast_1d(np.asarray(values, dtype=float))
+
+
+def on_the_beam(model: DiscreteModel, states: States) -> States:
+    """The states in the beam's angles on the model's grid (`DiscreteModel.beam_angles`): the
+    model's coordinates may be others (a modal model's amplitudes), and the map is linear, so
+    rates and accelerations map alike.
+
+    Parameters
+    ----------
+    model : DiscreteModel
+        The model whose coordinates `states` holds.
+    states : States
+        Coordinates, shape (model.n, m), and their rates.
+
+    Returns
+    -------
+    States
+        Angles [rad] at the grid's nodes 1..N-1, shape (N - 1, m), and their rates.
+    """
+
+    def up(x: np.ndarray | None) -> np.ndarray | None:
+        if x is None:
+            return None
+        return model.beam_angles(np.asarray(x, dtype=float).reshape(model.n, -1))
+
+    return States(states.tau, up(states.theta), up(states.theta_t), up(states.theta_tt))
 
 
 def _midspan(model: DiscreteModel, beam: Beam, states: States) -> np.ndarray:
     """y_m = y(1/2) / L."""
-    return model.midspan(states.theta)
+    return model.grid.midspan(states.theta)
 
 
 def _tip(model: DiscreteModel, beam: Beam, states: States) -> np.ndarray:
     """y(1) / L."""
-    return model.tip(states.theta)[1]
+    return model.grid.tip(states.theta)[1]
 
 
 def root_curvature(model: DiscreteModel, theta: np.ndarray) -> np.ndarray:
@@ -124,8 +151,8 @@ def root_curvature(model: DiscreteModel, theta: np.ndarray) -> np.ndarray:
     numpy.ndarray
         The curvature at s = 0 in units of 1/L (reference arc length), shape (m,).
     """
-    theta = np.asarray(theta, dtype=float).reshape(model.n, -1)
-    second = theta[1] if model.n > 1 else theta[0]
+    theta = np.asarray(theta, dtype=float).reshape(model.grid.N - 1, -1)
+    second = theta[1] if theta.shape[0] > 1 else theta[0]
     return (4.0 * theta[0] - second) / (2.0 * model.grid.ds)
 
 
@@ -163,7 +190,7 @@ def tip_kinematics(
     """
     grid = model.grid
     p = grid.P[-1]
-    th = np.asarray(states.theta, dtype=float).reshape(model.n, -1)
+    th = np.asarray(states.theta, dtype=float).reshape(model.grid.N - 1, -1)
     c, s = np.cos(th), np.sin(th)
     th_t = np.asarray(states.theta_t, dtype=float).reshape(th.shape)
     th_tt = np.asarray(states.theta_tt, dtype=float).reshape(th.shape)

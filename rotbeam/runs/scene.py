@@ -24,6 +24,7 @@ from ..model.base import DiscreteModel
 from ..model.criterion import delta_rms, rms
 from ..model.drive import PROFILE_SHAPES, profile_samples
 from ..model.elastica import DiscreteElastica
+from ..model.modal import ModalModel
 from ..model.params import (
     DRIVE_FIELDS,
     Beam,
@@ -101,9 +102,31 @@ class Scene:
         Returns
         -------
         DiscreteModel
-            A `DiscreteElastica` of the scene's dimensionless problem.
+            The `DiscreteElastica` of the scene's dimensionless problem, or with numerics.model
+            modal its `ModalModel` of numerics.modes modes.
         """
-        return DiscreteElastica(self.dimensionless, self.numerics.N if N is None else N)
+        return discrete_model(self.dimensionless, self.numerics, N)
+
+
+def discrete_model(dl: Dimensionless, num: Numerics, N: int | None = None) -> DiscreteModel:
+    """The discrete model numerics ask for: the elastica on N intervals, or its modal model.
+
+    Parameters
+    ----------
+    dl : Dimensionless
+        The scene's dimensionless problem.
+    num : Numerics
+        model ("elastica" or "modal"), modes and N.
+    N : int or None
+        Grid intervals (default numerics.N).
+
+    Returns
+    -------
+    DiscreteModel
+        A `DiscreteElastica`, or the `ModalModel` of numerics.modes of its modes.
+    """
+    full = DiscreteElastica(dl, num.N if N is None else N)
+    return full if num.model == "elastica" else ModalModel(full, num.modes)
 
 
 def build_scene(spec: dict[str, Any] | None = None, base: str | Path = ".") -> Scene:

@@ -42,10 +42,16 @@ class Numerics:
     certify: str = _d("certify")
     jacobian: str = _d("jacobian")  #: "exact" (analytic) or "fd" (the stepper's differences)
     extrapolate: bool = _d("extrapolate")  #: Richardson from N and N // 2 (rotbeam.runs)
+    model: str = _d("model")  #: "elastica" (the full discrete model) or "modal" (its modes)
+    modes: int = _d("modes")  #: how many modes the modal model keeps
 
     def __post_init__(self) -> None:
         check_fields(self, "numerics")
         if self.extrapolate and self.N < 6:
             raise RotbeamInputError(
                 f"numerics.N must be >= 6 with extrapolate (coarse grid N // 2), got {self.N}"
+            )
+        if self.model == "modal" and self.modes > self.N - 1:
+            raise RotbeamInputError(
+                f"numerics.modes = {self.modes}: allowed 1 to N - 1 = {self.N - 1} (numerics.N)"
             )

@@ -19,11 +19,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..model.base import DiscreteModel
-from ..model.modes import (
-    dimensionless_frequencies,
-    first_mode_damped_share,
-    linear_forced_response,
-)
+from ..model.modes import linear_forced_response
 from ..model.params import Dimensionless
 from .floquet import STEP_LADDER, FloquetResult
 from .numerics import Numerics
@@ -226,34 +222,27 @@ def starting_state(
 def slowest_decay_rate(model: DiscreteModel) -> float:
     """Slowest decay rate of the linearised transient, per unit tau.
 
-    With mass-proportional damping (eta M) a mode of undamped frequency w decays as
-    exp(-eta tau / 2) when underdamped (w > eta / 2) and, overdamped, as exp(-r tau) with
-    r = eta / 2 - sqrt(eta^2 / 4 - w^2) ~ w^2 / eta: slower.  The first mode at the lowest
-    rotation of the cycle is the slowest (stiffening only raises w).  A payload carries no
-    damping: eta / 2 becomes eta / 2 times the beam's share of the first mode's mass.
+    A mode of undamped frequency w and modal damping c (`DiscreteModel.first_mode_decay`;
+    c = eta for mass-proportional damping eta M) decays as exp(-c tau / 2) when underdamped
+    (w > c / 2) and, overdamped, as exp(-r tau) with r = c / 2 - sqrt(c^2 / 4 - w^2) ~ w^2 / c:
+    slower.  The first mode at the lowest rotation of the cycle is the slowest (stiffening only
+    raises w).  A payload carries no damping: c is eta times the beam's share of the first
+    mode's mass.
 
     Parameters
     ----------
     model : DiscreteModel
-        The model, its damping eta, effects and drive.
+        The model and its drive.
 
     Returns
     -------
     float
         r, per unit tau (0 without damping).
     """
-    eta, dl = model.eta, model.dl
-    if eta == 0.0:
+    w1, c = model.first_mode_decay(model.dl.law.lam_min)
+    if c == 0.0:
         return 0.0
-    ef = model.effects
-    lam_min = dl.law.lam_min if ef.centrifugal else 0.0
-    N = model.grid.N
-    half = eta / 2.0
-    if model.damping_rows(np.zeros((1, model.n))) is None:
-        w1 = float(dimensionless_frequencies(lam_min, dl.hub_ratio, 1, N, ef.softening)[0])
-    else:
-        w1, share = first_mode_damped_share(model, lam_min)
-        half = half * share
+    half = c / 2.0
     return half - math.sqrt(half * half - w1 * w1) if w1 < half else half
 
 
@@ -316,7 +305,7 @@ def _from_collocation(
 ) -> SteadyState:
     """SteadyState straight from the collocation (no time stepping): `integrate=False`."""
     fl = orbit_stability(model, res, candidate=True)
-    ok = res.converged and res.harmonic_tail <= num.tail_tol and model.eta > 0.0
+    ok = res.converged and res.harmonic_tail <= num.tail_tol and model.damped
     msg = f"collocation M={res.M}: {res.message}, harmonic tail {res.harmonic_tail:.2g}"
     cert = _certificate(fl, res, num, model.dl)
     if cert is not None:
@@ -327,7 +316,7 @@ def _from_collocation(
     if unstable:
         ok = False
         msg += " (not a steady state: the orbit is unstable)"
-    elif model.eta == 0.0:
+    elif not model.damped:
         msg += "; undamped model has no steady state (a periodic orbit, not an attractor)"
     elif not ok:
         msg += " (not verified: collocation did not meet its tolerance)"
@@ -546,7 +535,7 @@ class PeriodStepper:
 
 def _out_of_time(stepper: PeriodStepper, k: int, bound: float) -> str:
     """No steady state: which phase the budget cut, and the transient bound it left."""
-    where = f"the time stepping at N = {stepper.model.grid.N} after {k} whole periods"
+    where = f"the time stepping at {stepper.model.label} after {k} whole periods"
     return (
         f"no steady state: {stepper.time_budget.cut(where)} (tau={k * stepper.dl.period:.4g}); "
         f"remaining transient bound {bound:.3g}"
@@ -654,7 +643,7 @@ def march(
     # orbit; from any other start the first period's difference may be a lucky crossing
     min_periods = 1 if from_orbit else 2
     max_periods = min(num.max_periods, max(2, int(num.max_tau / P)))
-    if stepper.model.eta == 0.0:  # no transient ever decays: show a few periods and say so
+    if not stepper.model.damped:  # no transient ever decays: show a few periods and say so
         max_periods = min(max_periods, max(2, p))
     out = March(z=z, last=(np.array([0.0]), z[:n, None].copy()))
     while out.k < max_periods:
@@ -692,7 +681,7 @@ def march(
     out.message = (
         f"no steady state within {max_periods} periods (tau={out.k * P:.4g}); "
         f"remaining transient bound {out.bound:.3g} > ss_tol {num.ss_tol:g}"
-        + ("; undamped model has no steady state" if stepper.model.eta == 0 else "")
+        + ("; undamped model has no steady state" if not stepper.model.damped else "")
     )
     return out
 
@@ -926,7 +915,7 @@ def steady_state(
 def _collocation_cut(model: DiscreteModel, budget: TimeBudget, t0: float) -> SteadyState:
     """No steady state: the budget was spent in the collocation or its Floquet passes, before
     any time stepping (one sample, the straight beam, stands for the missing window)."""
-    where = f"the collocation at N = {model.grid.N}"
+    where = f"the collocation at {model.label}"
     return SteadyState(
         tau=np.zeros(1),
         theta=np.zeros((model.n, 1)),

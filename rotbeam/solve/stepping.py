@@ -4,8 +4,8 @@ state alone (the transient) or the state with one tangent vector (Benettin's exp
 
 Three steppers: Radau with the exact Jacobian (`ImplicitStepper`), and the explicit embedded
 Runge-Kutta method DOP853, either scipy's around the model's numpy right-hand side and fused
-tangent (`ExplicitStepper`) or a compiled loop around a compiled kernel for the models it
-covers (`CompiledStepper`, `rotbeam.solve.elastica_rk`).  `SwitchingStepper` takes the
+tangent (`ExplicitStepper`) or the compiled march a model may offer (`CompiledStepper`,
+`DiscreteModel.kernel`).  `SwitchingStepper` takes the
 explicit one while its steps are set by accuracy and Radau while they are set by stability;
 `period_stepper` builds the one a run asks for.  Why, and what each costs: docs/stability.md,
 "What a classification period costs".
@@ -17,7 +17,7 @@ from abc import ABC, abstractmethod
 
 import numpy as np
 
-from ..model.base import DiscreteModel
+from ..model.base import DiscreteModel, Kernel
 from .lyapunov import IvpInterval, tangent_system
 from .system import FirstOrderSystem
 
@@ -168,10 +168,9 @@ class ExplicitStepper(_IvpStepper):
 
 
 class CompiledStepper(PeriodStepper):
-    """DOP853 compiled around the compiled kernel of the discrete elastica
-    (`rotbeam.solve.elastica_rk`): scipy's tableau, error estimate and step control without
-    Python in the loop.  The step size carries over from one call to the next; a step never
-    crosses an instant of t_eval.
+    """The compiled DOP853 march a model offers (`DiscreteModel.kernel`): scipy's tableau, error
+    estimate and step control without Python in the loop.  The step size carries over from one
+    call to the next; a step never crosses an instant of t_eval.
 
     Parameters
     ----------
@@ -192,10 +191,8 @@ class CompiledStepper(PeriodStepper):
     stiff_steps = 2000
 
     def __init__(self, model: DiscreteModel, rtol: float, atol: np.ndarray) -> None:
-        from . import elastica_rk  # here: numba loads with the first compiled run only
-
-        self._rk = elastica_rk
-        self._args = kernel_arguments(model)
+        kernel = model_kernel(model)
+        self._advance_kernel, self._args = kernel.advance, kernel.arguments
         self._rtol = float(rtol)
         self._atol = {False: np.ascontiguousarray(atol, dtype=float)}
         self._atol[True] = _tangent_atol(self._atol[False])
@@ -207,8 +204,9 @@ class CompiledStepper(PeriodStepper):
         y = np.array(y, dtype=float)
         saved = np.empty((stops.size - 1, y.size))
         before = int(self.counts[1])
-        status, h = self._rk.advance(y, stops, self._h[tangent], self._rtol, self._atol[tangent],
-                                     tangent, *self._args, saved, self.counts)  # fmt: skip
+        status, h = self._advance_kernel(y, stops, self._h[tangent], self._rtol,
+                                         self._atol[tangent], tangent, *self._args, saved,
+                                         self.counts)  # fmt: skip
         self._h[tangent] = h
         self.steps = int(self.counts[1]) - before
         if status:
@@ -338,28 +336,28 @@ def compiled_cover(model: DiscreteModel) -> str:
     return model.kernel()[1]
 
 
-def kernel_arguments(model: DiscreteModel) -> tuple:
-    """The model as the compiled kernel reads it (`DiscreteModel.kernel`).
+def model_kernel(model: DiscreteModel) -> Kernel:
+    """The compiled march the model offers (`DiscreteModel.kernel`).
 
     Parameters
     ----------
     model : DiscreteModel
-        A model the kernel covers (`compiled_cover`).
+        A model that offers one (`compiled_cover`).
 
     Returns
     -------
-    tuple
-        W, K, P, Q, par, harm (`rotbeam.solve.elastica_rk.rates`).
+    Kernel
+        Its march, right-hand side and the arrays they read.
 
     Raises
     ------
     ValueError
         For a model that offers no kernel for its scene (the reason in the message).
     """
-    arguments, why_not = model.kernel()
-    if arguments is None:
+    kernel, why_not = model.kernel()
+    if kernel is None:
         raise ValueError(why_not)
-    return arguments
+    return kernel
 
 
 def explicit_stepper(model: DiscreteModel, rtol: float, atol: np.ndarray) -> PeriodStepper:

@@ -8,7 +8,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..config.errors import RotbeamInputError
-from ..model.params import Effects
+from .params import Effects
 
 
 @dataclass

@@ -1,5 +1,5 @@
-"""The Dormand-Prince 8(5,3) tableau of the compiled stepper (`rotbeam.solve.elastica_rk`): the 12
-stages' nodes C, coefficients A and weights B, and the error weights E3, E5.
+"""The Dormand-Prince 8(5,3) tableau of the compiled stepper (`rotbeam.model.elastica_kernel`):
+the 12 stages' nodes C, coefficients A and weights B, and the error weights E3, E5.
 
 The numbers are SciPy's (scipy/integrate/_ivp/dop853_coefficients.py, from Hairer's DOP853), copied
 here so that rotbeam does not read a private module of SciPy; SciPy's licence is in
