@@ -199,7 +199,7 @@ def judge_scenes(
         t0 = time.perf_counter()
         row: dict[str, Any] = {"scene": name, "drive": scene.drive.kind, "N": scene.numerics.N,
                                "tip_mass_kg": scene.beam.tip_mass}  # fmt: skip
-        if scene.drive.move is not None:
+        if not scene.drive.periodic:
             res = simulate_move(scene)
             verdict = judge_move(res, threshold)
             row.update({k: getattr(res, k) for k in ("rms_dynamic", "rms_quasistatic", "delta_rms",

@@ -209,10 +209,11 @@ def euler_loads(drive: Drive) -> tuple[tuple[int, ...], tuple[float, ...]]:
     RotbeamInputError
         For a single move, which has no repetition rate and no f_d*.
     """
-    if drive.move is not None:
+    if not drive.periodic:
         raise RotbeamInputError("a single move has no repetition rate: no f_d* to find")
     floor = LOAD_FLOOR * drive.omega_max
-    loaded = [(k, k * abs(a)) for k, a, _ in drive.law(1.0).terms if k * abs(a) > floor]
+    terms = drive.law(1.0).harmonic_terms()
+    loaded = [(k, k * abs(a)) for k, a, _ in terms if k * abs(a) > floor]
     return tuple(k for k, _ in loaded), tuple(load for _, load in loaded)
 
 

@@ -395,7 +395,8 @@ def scene_request(args: argparse.Namespace, needs: tuple[str, ...] = ("omega0", 
         missing.
     """
     from ..config.scenefile import auto_tol, load_scene_file, scene_sections, split_auto
-    from ..model.params import DRIVE_FIELDS, Effects
+    from ..model.drives import DRIVE_FIELDS
+    from ..model.params import Effects
     from ..runs.scene import build_scene, drive_kind
 
     raw = dict(load_scene_file(args.scene)) if args.scene else {}
@@ -444,15 +445,20 @@ def _check_values(spec: dict[str, dict[str, Any]]) -> None:
                 check_value(section, name, value)
 
 
-#: the flags that set a drive's kind, and the scene key each fills
-KIND_FLAGS = ("harmonics", "profile", "move")
+#: the flags that set a drive's kind by a structured value, and how each reads its text into the
+#: scene key of its name (a file is relative to where the command runs)
+KIND_FLAGS = {
+    "harmonics": harmonics_flag,
+    "profile": lambda text: str(Path(text).resolve()),
+    "move": lambda text: str(Path(text).resolve()),
+}
 
 
 def _drive_flags(args: argparse.Namespace, drive: dict[str, Any], flagged: dict) -> None:
     """Put --harmonics, --profile and --move into the drive section.  A flag's kind replaces
     the --scene file's: the file's keys that the flag's kind does not read give way (a flag's
     own values stay, and are refused if the kind does not read them)."""
-    from ..model.params import DRIVE_FIELDS
+    from ..model.drives import DRIVE_FIELDS, kind_of
 
     given = [k for k in KIND_FLAGS if getattr(args, k, None)]
     if not given:
@@ -462,14 +468,12 @@ def _drive_flags(args: argparse.Namespace, drive: dict[str, Any], flagged: dict)
             f"--{' and --'.join(given)} given together; allowed: one of --harmonics, --profile, "
             f"--move"
         )
-    kind = given[0]
-    for key in [*KIND_FLAGS, "omega0", "amplitude", "f_d", "settle", "move_start"]:
-        if key not in DRIVE_FIELDS[kind] and key not in flagged:
-            drive.pop(key, None)
-    if kind == "harmonics":
-        drive["harmonics"] = harmonics_flag(args.harmonics)
-    else:  # a flag's file is relative to where the command runs
-        drive[kind] = str(Path(getattr(args, kind)).resolve())
+    key = given[0]
+    reads = DRIVE_FIELDS[kind_of({key: True})]
+    for name in SECTIONS["drive"]:
+        if name not in reads and name not in flagged:
+            drive.pop(name, None)
+    drive[key] = KIND_FLAGS[key](getattr(args, key))
 
 
 def add_uncertainty_flags(p: argparse.ArgumentParser) -> None:

@@ -70,7 +70,7 @@ def run(args: argparse.Namespace) -> int:
     criterion = options.criterion_request(args, inputs)
     if criterion != "y_m" and criterion not in observe:
         observe = (*observe, criterion)  # the criterion's numbers beside the verdict
-    if scene.drive.move is not None:
+    if not scene.drive.periodic:
         return _run_move(args, scene, threshold, tol, inputs, observe, criterion)
 
     from ..analysis.verdict import judge

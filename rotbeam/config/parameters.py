@@ -10,7 +10,7 @@ with extrapolation) stay with the class that owns both fields.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
 from typing import Any
 
 import numpy as np
@@ -99,6 +99,7 @@ SECTIONS: dict[str, dict[str, Param]] = {
             "rest",
             "quasistatic",
         ),  # fmt: skip
+        "extra": _data((), "the fields of drive kinds registered beside these: name -> value"),
     },
     "effects": {
         "centrifugal": _bool(True, "centrifugal load C (1 - delta + delta x)"),
@@ -345,7 +346,8 @@ def check_value(section: str, name: str, value: Any) -> Any:
 def check_fields(obj: object, section: str) -> None:
     """Check every registry field of a frozen dataclass instance in place.
 
-    Each field is replaced by its checked value (an int given for a real becomes a float).
+    Each field is replaced by its checked value (an int given for a real becomes a float).  The
+    fields of registered drive kinds are not the class's own: `Drive` checks them in its `extra`.
 
     Parameters
     ----------
@@ -359,8 +361,47 @@ def check_fields(obj: object, section: str) -> None:
     RotbeamInputError
         For the first field that fails `check_value`.
     """
+    own = {f.name for f in fields(obj)}  # a registered drive kind's fields live in Drive.extra
     for name in SECTIONS[section]:
-        object.__setattr__(obj, name, check_value(section, name, getattr(obj, name)))
+        if name in own:
+            object.__setattr__(obj, name, check_value(section, name, getattr(obj, name)))
+
+
+def add_fields(section: str, entries: dict[str, Param]) -> None:
+    """Add fields to a scene section: what registering a drive kind with fields of its own does.
+
+    Scene files, CLI flags and `check_value` read the section, so they learn the fields here.
+
+    Parameters
+    ----------
+    section : str
+        The scene section (`SECTIONS`).
+    entries : dict
+        Field name -> its registry entry.
+
+    Raises
+    ------
+    ValueError
+        If a name is already a field of the section (registered twice or by another kind).
+    """
+    clash = sorted(set(entries) & set(SECTIONS[section]))
+    if clash:
+        raise ValueError(f"{section}.{clash[0]} is already a field; allowed: a new name")
+    SECTIONS[section].update(entries)
+
+
+def remove_fields(section: str, names: tuple[str, ...]) -> None:
+    """Remove fields that `add_fields` added (unregistering a drive kind).
+
+    Parameters
+    ----------
+    section : str
+        The scene section.
+    names : tuple of str
+        The fields; names that are not in the section are passed over.
+    """
+    for name in names:
+        SECTIONS[section].pop(name, None)
 
 
 def help_text(section: str, name: str) -> str:

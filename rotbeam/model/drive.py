@@ -123,6 +123,11 @@ class DriveLaw(ABC):
         """The period (or the move's duration) in units of T."""
         return 2.0 * math.pi / self.omega
 
+    @property
+    def duration(self) -> float:
+        """A single run's length in units of T: its period (`MoveLaw` knows it from its samples)."""
+        return self.period
+
     def dense(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """The law sampled at DENSE equispaced instants of one period (or of the move).
 
@@ -194,6 +199,22 @@ class DriveLaw(ABC):
         c = np.fft.rfft(self.dense()[1]) / DENSE
         c[1:] *= 2.0
         return c[: K + 1]
+
+    def harmonic_terms(self) -> tuple[tuple[int, float, float], ...]:
+        """The law as lam = mean + sum_k alpha_k sin(k omega tau + phase_k).
+
+        From `coefficients` (c_k = -i alpha_k exp(i phase_k)) up to half of DENSE, the terms
+        above round-off; what the linear estimate of f_d* reads (`HarmonicLaw` knows them).
+
+        Returns
+        -------
+        tuple of (int, float, float)
+            (k, alpha_k >= 0, phase_k [rad]), alpha_k dimensionless.
+        """
+        c = self.coefficients(DENSE // 2 - 1)
+        scale = max(float(np.max(np.abs(c[1:]))), 1e-300)
+        return tuple((k, float(abs(c[k])), float(np.angle(c[k]) + 0.5 * math.pi))
+                     for k in range(1, c.size) if abs(c[k]) > 1e-12 * scale)  # fmt: skip
 
 
 @dataclass(frozen=True)
@@ -388,6 +409,16 @@ class HarmonicLaw(DriveLaw):
             if k <= K:
                 c[k] += -1j * a * cmath.exp(1j * ph)
         return c
+
+    def harmonic_terms(self) -> tuple[tuple[int, float, float], ...]:
+        """The terms themselves: exact, no sampling.
+
+        Returns
+        -------
+        tuple of (int, float, float)
+            (k, alpha_k, phase_k [rad]), as given.
+        """
+        return self.terms
 
 
 #: harmonics of a sampled period kept by default (a low-pass: docs/model.md, "Drives")

@@ -12,13 +12,25 @@ from __future__ import annotations
 
 import math
 from dataclasses import asdict, dataclass, field, fields, replace
+from typing import Any
 
 import numpy as np
 
 from ..config.checks import check_finite, check_nonnegative, check_positive
 from ..config.errors import RotbeamInputError
 from ..config.parameters import check_fields, default
-from .drive import DriveLaw, HarmonicLaw, MoveLaw, harmonics_of_samples
+from .drive import DriveLaw, HarmonicLaw
+from .drives import (
+    DriveKind,
+    checked_extra,
+    given,
+    key_fields,
+    kind_class,
+    kind_of,
+    own_fields,
+    refusable_fields,
+    unused_drive_field,
+)
 
 #: Root of 1 + cos(b) cosh(b) = 0 (first cantilever mode).  The paper rounds it to 1.875.
 BETA1 = 1.8751040687119611
@@ -417,46 +429,6 @@ class Samples:
             )
 
 
-#: the drive fields each kind of drive reads (the others are refused: `unused_drive_field`)
-DRIVE_FIELDS = {
-    "sine": ("omega0", "amplitude", "f_d"),
-    "harmonics": ("omega0", "f_d", "harmonics"),
-    "profile": ("f_d", "profile"),
-    "move": ("move", "settle", "move_start"),
-}
-#: why a kind of drive does not read a field, for the one-line refusal
-_UNUSED_WHY = {
-    "omega0": "its speeds are its own; tables report its mean speed as omega0",
-    "amplitude": "its swing is its own",
-    "f_d": "a single move has no repetition rate",
-    "move_start": "only a move starts from rest",
-    "harmonics": "the harmonics replace the amplitude",
-}
-
-
-def unused_drive_field(kind: str, name: str, value: object) -> RotbeamInputError:
-    """The one-line error for a drive field that the drive's kind does not read.
-
-    Parameters
-    ----------
-    kind : str
-        The drive's kind: "sine", "harmonics", "profile" or "move".
-    name : str
-        The field given.
-    value : object
-        Its value, shown in the message.
-
-    Returns
-    -------
-    RotbeamInputError
-        "drive.NAME = VALUE: a KIND drive does not read it (why); allowed: ...".
-    """
-    return RotbeamInputError(
-        f"drive.{name} = {value!r}: a {kind} drive does not read it ({_UNUSED_WHY[name]}); "
-        f"allowed with a {kind}: {', '.join(DRIVE_FIELDS[kind])}"
-    )
-
-
 @dataclass(frozen=True)
 class Drive:
     """How the disk turns: Omega(t) [rad/s].
@@ -483,8 +455,11 @@ class Drive:
     settle: float | None = default("drive", "settle")  #: after a move [s]; None: until calm
     #: how a move starts: "rest" (static at its first speed) or "quasistatic" (moving)
     move_start: str = default("drive", "move_start")
+    #: the fields of registered drive kinds beside these, name -> value (read as attributes)
+    extra: tuple[tuple[str, Any], ...] = default("drive", "extra")
 
     def __post_init__(self) -> None:
+        object.__setattr__(self, "extra", checked_extra(self.extra))
         check_fields(self, "drive")
         object.__setattr__(self, "harmonics", tuple(self.harmonics))
         ks = [h.k for h in self.harmonics]
@@ -492,35 +467,50 @@ class Drive:
             raise RotbeamInputError(
                 f"drive.harmonics: k = {sorted(ks)} repeats a harmonic; allowed: distinct k"
             )
-        given = [n for n in ("harmonics", "profile", "move") if getattr(self, n)]
-        if len(given) > 1:
+        keys = key_fields()
+        together = [n for n in keys if given(getattr(self, n))]
+        if len(together) > 1:
             raise RotbeamInputError(
-                f"drive: {' and '.join(given)} given together; allowed: one of harmonics, "
-                f"profile, move"
+                f"drive: {' and '.join(together)} given together; allowed: one of {', '.join(keys)}"
             )
         for name, kind in (("profile", "profile"), ("move", "move")):
             value = getattr(self, name)
             if value is not None and value.kind != kind:
                 raise RotbeamInputError(f"drive.{name}: samples of a {value.kind}, not a {kind}")
-        if self.settle is not None and self.move is None:
+        reads = self.as_kind.fields
+        if self.settle is not None and "settle" not in reads:
             raise RotbeamInputError(f"drive.settle = {self.settle!r}: only a move settles")
-        for name in ("omega0", "amplitude", "f_d", "move_start"):
+        for name in refusable_fields():
             value = getattr(self, name)
-            if name not in DRIVE_FIELDS[self.kind] and value != default("drive", name):
+            if name not in reads and value != default("drive", name):
                 raise unused_drive_field(self.kind, name, value)
+
+    def __getattr__(self, name: str) -> Any:
+        """A registered drive kind's own field: its value in `extra`, else its default."""
+        if name.startswith("__") or name == "extra":
+            raise AttributeError(name)
+        for key, value in self.extra:
+            if key == name:
+                return value
+        if name in own_fields():
+            return default("drive", name)
+        raise AttributeError(f"'Drive' object has no attribute {name!r}")
 
     @property
     def kind(self) -> str:
-        """ "sine", "harmonics", "profile" or "move"."""
-        for name in ("move", "profile", "harmonics"):
-            if getattr(self, name):
-                return name
-        return "sine"
+        """The registered kind whose key field is given: "sine", "harmonics", "profile",
+        "move" or a kind registered beside them (rotbeam.model.drives)."""
+        return kind_of({key: getattr(self, key) for key in key_fields()})
+
+    @property
+    def as_kind(self) -> DriveKind:
+        """This drive as its registered kind: its law, speeds and the words of its refusals."""
+        return kind_class(self.kind)(self)
 
     @property
     def periodic(self) -> bool:
-        """Whether Omega repeats at f_d (everything but a move)."""
-        return self.move is None
+        """Whether Omega repeats at f_d (every built-in kind but a move)."""
+        return self.as_kind.periodic
 
     @property
     def terms(self) -> tuple[Harmonic, ...]:
@@ -531,24 +521,20 @@ class Drive:
     def mean_speed(self) -> float:
         """The mean angular velocity [rad/s]: Omega_0 for the sine and harmonics, the period
         mean of a profile, the time mean over a move (what tables report as omega0)."""
-        if self.kind in ("sine", "harmonics"):
-            return self.omega0
-        return self.law(1.0).mean
+        return self.as_kind.mean_speed()
 
     @property
     def swing(self) -> float:
         """The largest |Omega - mean_speed| [rad/s]: a for the sine (what tables report as
         amplitude)."""
-        if self.kind == "sine":
-            return self.amplitude
-        law = self.law(1.0)  # one law: its mean is mean_speed (Omega_0 for harmonics)
-        return float(np.max(np.abs(law.dense()[1] - law.mean)))
+        return self.as_kind.swing()
 
     def law(self, T: float) -> DriveLaw:
-        """The drive in the model's units: lam(tau) = Omega(tau T) T.
+        """The drive in the model's units: lam(tau) = Omega(tau T) T, by its kind.
 
         A sine or harmonics become a `HarmonicLaw`, a sampled period the `HarmonicLaw` of its
-        trigonometric interpolant, a move a `MoveLaw` whose time starts at its first sample.
+        trigonometric interpolant, a move a `MoveLaw` whose time starts at its first sample, a
+        registered kind what its `DriveKind.law` gives.
 
         Parameters
         ----------
@@ -560,17 +546,7 @@ class Drive:
         DriveLaw
             lam(tau) = Omega T and lam_dot(tau), time in units of T.
         """
-        if self.move is not None:
-            t0 = self.move.x[0]
-            return MoveLaw(tuple((t - t0) / T for t in self.move.x),
-                           tuple(w * T for w in self.move.omega))  # fmt: skip
-        w = 2.0 * math.pi * self.f_d * T
-        if self.profile is not None:
-            mean, terms = harmonics_of_samples(self.profile.x, self.profile.omega,
-                                               self.profile.keep)  # fmt: skip
-            return HarmonicLaw(mean * T, tuple((k, a * T, ph) for k, a, ph in terms), w)
-        terms = tuple((h.k, h.amplitude * T, h.phase) for h in self.terms)
-        return HarmonicLaw(self.omega0 * T, terms, w)
+        return self.as_kind.law(T)
 
     def omega(self, t: float) -> float:
         """The angular velocity at one instant.
@@ -620,16 +596,12 @@ class Drive:
     @property
     def omega_max(self) -> float:
         """The largest |Omega| [rad/s]: |Omega_0| + a for the sine."""
-        if self.kind == "sine":
-            return abs(self.omega0) + self.amplitude
-        return self.law(1.0).lam_max
+        return self.as_kind.omega_max()
 
     @property
     def omega_dot_max(self) -> float:
         """The largest |dOmega/dt| [rad/s^2]: a 2 pi f_d for the sine."""
-        if self.kind == "sine":
-            return self.amplitude * 2.0 * math.pi * self.f_d
-        return self.law(1.0).lam_dot_max
+        return self.as_kind.omega_dot_max()
 
 
 @dataclass(frozen=True)
@@ -802,16 +774,8 @@ class Dimensionless:
         T = beam.T
         effects = effects if effects is not None else Effects()
         law = drive.law(T)
-        if drive.kind == "sine":
-            lam0, alpha, omega, law = (
-                drive.omega0 * T,
-                drive.amplitude * T,
-                2.0 * math.pi * drive.f_d * T,
-                None,
-            )
-        else:
-            lam0, omega = law.mean, law.omega
-            alpha = max(abs(law.lam_max - lam0), abs(lam0 - law.lam_min))
+        lam0, alpha = drive.as_kind.scales(law, T)
+        omega = law.omega
         return cls(
             hub_ratio=beam.hub_ratio,
             eta=beam.eta,
@@ -900,12 +864,7 @@ def drive_groups(beam: Beam, drive: Drive) -> dict[str, float]:
     """
     G = beam.G
     w = drive.omega_max
-    if drive.kind == "sine":
-        e_max = G * drive.amplitude * 2.0 * math.pi * drive.f_d
-        e_n = G * drive.amplitude * 2.0 * math.pi * beam.f_n
-    else:
-        e_max = G * drive.omega_dot_max
-        e_n = e_max * beam.f_n / drive.f_d if drive.periodic else math.nan
+    e_max, e_n = drive.as_kind.euler_numbers(G, beam.f_n)
     return {
         "C_max": G * w**2,
         "E_max": e_max,
@@ -1008,9 +967,7 @@ def check_model_range(beam: Beam, drive: Drive) -> None:
     c_max = G * w * w  # x * x: inf rather than OverflowError
     e_max = G * drive.omega_dot_max
     ratio = drive.f_d / beam.f_n if drive.periodic else 0.0
-    what = f"the {drive.kind} drive's largest speed {w:.4g} rad/s"
-    if drive.kind == "sine":
-        what = f"drive.omega0 = {drive.omega0!r}, drive.amplitude = {drive.amplitude!r}"
+    what = drive.as_kind.speed_source()
     hint = unit_hint(beam)
     if not c_max <= C_MAX_LIMIT:
         raise RotbeamInputError(
@@ -1025,10 +982,7 @@ def check_model_range(beam: Beam, drive: Drive) -> None:
             f"strain up to {100 * CLAMP_STRAIN_LIMIT:g} %{hint}"
         )
     if not e_max <= E_MAX_LIMIT:
-        accel = f"drive.amplitude = {drive.amplitude!r}, drive.f_d = {drive.f_d!r}"
-        if drive.kind != "sine":
-            accel = (f"the {drive.kind} drive's largest |dOmega/dt| "
-                     f"{drive.omega_dot_max:.4g} rad/s^2")  # fmt: skip
+        accel = drive.as_kind.acceleration_source()
         raise RotbeamInputError(
             f"E_max = G max |dOmega/dt| = {e_max:.3g} from {accel}, G = {G:.3g} s^2 (beam); "
             f"allowed: E_max <= {E_MAX_LIMIT:g}{hint}"

@@ -11,7 +11,6 @@ from matplotlib.figure import Figure
 
 from ..analysis.verdict import Verdict
 from ..config.checks import check_plot_suffix
-from ..model.drive import kept_harmonics
 from ..model.modes import resonance_frequency_hz
 from ..model.params import Drive
 from ..runs.move import MoveResult
@@ -47,9 +46,10 @@ def plot_samples(result: SceneResult) -> int:
 def largest_speed_text(drive: Drive) -> str:
     """The title's largest speed of a drive that is not the sine.
 
-    A sampled profile's own largest |Omega| sample, and its trigonometric interpolant's beside
-    it where the two differ at the title's four digits (the Gibbs overshoot at a trapezoid's
-    corners: 6.018 rad/s for a 6 rad/s trapezoid of 32 harmonics).
+    Its kind's words (`DriveKind.largest_speed`): a sampled profile's own largest |Omega|
+    sample, and its trigonometric interpolant's beside it where the two differ at the title's
+    four digits (the Gibbs overshoot at a trapezoid's corners: 6.018 rad/s for a 6 rad/s
+    trapezoid of 32 harmonics).
 
     Parameters
     ----------
@@ -61,15 +61,7 @@ def largest_speed_text(drive: Drive) -> str:
     str
         "largest speed W rad/s", with "(W' after the K-harmonic interpolant)" where it differs.
     """
-    law = drive.omega_max
-    if drive.profile is None:
-        return f"largest speed {law:.4g} rad/s"
-    own = max(abs(w) for w in drive.profile.omega)
-    text = f"largest speed {own:.4g} rad/s"
-    if f"{own:.4g}" != f"{law:.4g}":
-        k = kept_harmonics(len(drive.profile.omega), drive.profile.keep)
-        text += f" ({law:.4g} after the {k}-harmonic interpolant)"
-    return text
+    return drive.as_kind.largest_speed()
 
 
 def plot_verdict(result: SceneResult, verdict: Verdict, path: str | Path) -> None:
@@ -126,9 +118,7 @@ def verdict_figure(result: SceneResult, verdict: Verdict) -> Figure:
         where += f"; linear estimate $f_d^*$ = {verdict.fd_star_estimate_hz:.3g} Hz"
     else:
         where += "; no Euler load, no $f_d^*$"
-    what = rf"$\Omega_0$ = {drive.omega0:g} rad/s, a = {drive.amplitude:g} rad/s"
-    if drive.kind != "sine":
-        what = f"{drive.kind} drive, {largest_speed_text(drive)}"
+    what = drive.as_kind.title()
     ax.set_title(
         what + rf", $f_d$ = {drive.f_d:g} Hz" + f"\n{where}\n" + verdict.text.split(" (")[0],
         loc="left",

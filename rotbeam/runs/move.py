@@ -192,7 +192,7 @@ def simulate_move(
     RotbeamInputError
         If the scene's drive is not a move.
     """
-    if scene.drive.move is None:
+    if scene.drive.periodic:
         raise RotbeamInputError(
             f"simulate_move needs a drive with a move, got a {scene.drive.kind} drive"
         )
@@ -200,7 +200,7 @@ def simulate_move(
     T = scene.beam.T
     model = scene.model()
     law = model.dl.law
-    f1_end = resonance_frequency_hz(scene.beam, abs(scene.drive.move.omega[-1]))
+    f1_end = resonance_frequency_hz(scene.beam, abs(scene.drive.as_kind.final_speed()))
     f1_max = resonance_frequency_hz(scene.beam, scene.drive.omega_max)
     dt = 1.0 / (PER_PERIOD * f1_max) / T  # sample step [units of T]
     steps = max(MOVE_SAMPLES, math.ceil(law.duration / dt))

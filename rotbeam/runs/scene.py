@@ -23,10 +23,16 @@ from ..config.threads import one_blas_thread
 from ..model.base import DiscreteModel
 from ..model.criterion import delta_rms, rms
 from ..model.drive import PROFILE_SHAPES, profile_samples
+from ..model.drives import (
+    DRIVE_FIELDS,
+    kind_of,
+    own_fields,
+    refusable_fields,
+    unused_drive_field,
+)
 from ..model.elastica import DiscreteElastica
 from ..model.modal import ModalModel
 from ..model.params import (
-    DRIVE_FIELDS,
     Beam,
     Dimensionless,
     Drive,
@@ -36,7 +42,6 @@ from ..model.params import (
     check_model_range,
     drive_groups,
     unit_hint,
-    unused_drive_field,
 )
 from ..solve.extrapolation import richardson
 from ..solve.floquet import VERDICT_ONLY
@@ -208,14 +213,14 @@ def drive_of(values: dict[str, Any], base: Path) -> Drive:
     """
     values = dict(values)
     kind = drive_kind(values)
-    for name in ("omega0", "amplitude", "f_d", "move_start"):
-        if name in values and name not in DRIVE_FIELDS[kind] and kind != "harmonics":
-            raise unused_drive_field(kind, name, values[name])
     if "harmonics" in values and "amplitude" in values:
         raise RotbeamInputError(
             "drive: amplitude and harmonics given together; allowed: one of them (harmonics "
             "replace the amplitude: {k: 1, amplitude: a} is the sine)"
         )
+    for name in refusable_fields():
+        if name in values and name not in DRIVE_FIELDS[kind]:
+            raise unused_drive_field(kind, name, values[name])
     if values.get("harmonics") is not None:
         values["harmonics"] = _harmonics(values["harmonics"])
     for key, columns in DRIVE_FILES.items():
@@ -241,7 +246,9 @@ def drive_of(values: dict[str, Any], base: Path) -> Drive:
             )
         data = read_columns(base / value, columns, f"drive.{key}")
         values[key] = Samples(data[columns[0]], data["omega"], key, str(value), keep)
-    return Drive(**values)
+    extra = dict(values.pop("extra", None) or {})
+    extra.update({name: values.pop(name) for name in own_fields() if name in values})
+    return Drive(**values, extra=extra)
 
 
 def drive_kind(values: dict[str, Any]) -> str:
@@ -255,12 +262,10 @@ def drive_kind(values: dict[str, Any]) -> str:
     Returns
     -------
     str
-        "move", "profile" or "harmonics" where that key holds a value, else "sine".
+        The registered kind whose key holds a value: "move", "profile", "harmonics" or a kind
+        registered beside them, else "sine" (rotbeam.model.drives.kind_of).
     """
-    for name in ("move", "profile", "harmonics"):
-        if values.get(name):
-            return name
-    return "sine"
+    return kind_of(values)
 
 
 def _harmonics(items: Any) -> tuple[Harmonic, ...]:
@@ -618,7 +623,7 @@ def simulate(
     RotbeamInputError
         If the drive is a single move (`rotbeam.runs.move.simulate_move` runs it).
     """
-    if scene.drive.move is not None:
+    if not scene.drive.periodic:
         raise RotbeamInputError(
             "a single move has no periodic steady state: simulate it with "
             "rotbeam.runs.move.simulate_move (rotbeam simulate --move)"
