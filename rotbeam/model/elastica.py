@@ -8,6 +8,7 @@ at the tip".
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 
 import numpy as np
 
@@ -15,17 +16,19 @@ from ..config.errors import RotbeamInputError
 from .base import Kernel
 from .grid import Grid, centrifugal_strain, check_N
 from .gyroscopic import GyroscopicModel
+from .loads import KERNEL_PARTS, Load, default_parts
 from .params import Dimensionless
 
 
 class DiscreteElastica(GyroscopicModel):
-    """The rotating elastica on an N-interval grid: loads, exact Jacobians, mass matrices.
+    """The rotating elastica on an N-interval grid: its beam and a list of loads.
 
-    The model every run of rotbeam uses: M = W cos, B = W sin with W = Q P, the bending
-    stiffness K and the centrifugal, softening and Euler loads summed by the tension quadrature,
-    all in units of EI/L^2 with time in units of T.  With `extension` the grid is the stretched
-    one (stretched by the tip mass's pull too); with a payload Q carries the tip mass and the
-    last angle's row its rotary inertia.
+    The model every run of rotbeam uses: the beam is M = W cos, B = W sin with W = Q P and the
+    bending stiffness K, in units of EI/L^2 with time in units of T; the loads are parts
+    (`rotbeam.model.loads`: centrifugal, softening, Euler, Coriolis, damping, or any `Load`),
+    their nodal forces summed by the tension quadrature.  With `extension` the grid is the
+    stretched one (stretched by the tip mass's pull too): a property of the beam, not a load;
+    with a payload Q carries the tip mass and the last angle's row its rotary inertia.
 
     Parameters
     ----------
@@ -33,6 +36,10 @@ class DiscreteElastica(GyroscopicModel):
         The scene (groups, effects, drive, payload).
     N : int
         Grid intervals; the model has n = N - 1 angles.
+    parts : sequence of Load or None
+        The loads; None: one for each effect of `dl.effects` that is on (`default_parts`).
+    extra : sequence of Load
+        Loads added after `parts` (`with_parts`); `at` keeps them.
 
     Raises
     ------
@@ -41,7 +48,13 @@ class DiscreteElastica(GyroscopicModel):
         stretched equilibrium (with a tip mass, whose pull adds to the tension, sooner).
     """
 
-    def __init__(self, dl: Dimensionless, N: int) -> None:
+    def __init__(
+        self,
+        dl: Dimensionless,
+        N: int,
+        parts: Sequence[Load] | None = None,
+        extra: Sequence[Load] = (),
+    ) -> None:
         self.dl = dl
         self.N = check_N(N)
         self.hub_ratio = float(dl.hub_ratio)
@@ -57,7 +70,11 @@ class DiscreteElastica(GyroscopicModel):
             strain = centrifugal_strain(s, self.hub_ratio, kappa, dl.lam_stretch, dl.tip_mass)
         self.grid = Grid.build(self.N, strain, dl.tip_mass)
         self.n = self.N - 1
-        self.eta = float(dl.eta) if self.effects.damping else 0.0
+        self.given = None if parts is None else tuple(parts)
+        self.extra = tuple(extra)
+        #: the loads, summed in this order
+        self.parts = (default_parts(dl.effects) if parts is None else self.given) + self.extra
+        self.eta = self._damping_rate()
         #: the payload's rotary inertia on the last angle's row, J / (rho A L^3) / ds, divided
         #: by that row's 1 + eps like the row's curvature (the stretched grid's K)
         self.rotary = dl.tip_inertia / self.grid.ds
@@ -75,9 +92,92 @@ class DiscreteElastica(GyroscopicModel):
         Returns
         -------
         DiscreteElastica
-            The model of `dl` with the same N.
+            The model of `dl` with the same N and the same explicit and extra parts (the
+            parts of the effects are those of `dl.effects`).
         """
-        return DiscreteElastica(dl, self.N)
+        return DiscreteElastica(dl, self.N, self.given, self.extra)
+
+    def with_parts(self, *loads: Load) -> DiscreteElastica:
+        """The same model with more loads attached.
+
+        Parameters
+        ----------
+        *loads : Load
+            Loads added after the model's own parts.
+
+        Returns
+        -------
+        DiscreteElastica
+            A new model of the same scene and grid; `at` keeps `loads`.
+        """
+        return DiscreteElastica(self.dl, self.N, self.given, self.extra + tuple(loads))
+
+    def _damping_rate(self) -> float:
+        """eta: the sum of the parts' viscous damping rates (0.0 without damping)."""
+        eta = 0.0
+        for part in self.parts:
+            rate = part.damping(self)
+            if rate is not None:
+                eta += rate
+        return eta
+
+    def rate_load_rows(
+        self,
+        theta: np.ndarray,
+        theta_t: np.ndarray,
+        lam: np.ndarray,
+        lam_dot: np.ndarray,
+        jacobian: bool = False,
+    ) -> tuple | None:
+        """The sum of the parts' other terms (`Load.rows`), with their blocks.
+
+        Parameters
+        ----------
+        theta, theta_t : numpy.ndarray
+            Angles [rad] and their rates (1/T), shape (m, n) each.
+        lam, lam_dot : numpy.ndarray
+            Omega T and its rate of change at the m instants, shape (m,).
+        jacobian : bool
+            Also give the blocks.
+
+        Returns
+        -------
+        tuple or None
+            (T, dT/dTheta, dT/dTheta_t), blocks None where zero; None where no part has such a
+            term.
+        """
+        total = None
+        for part in self.parts:
+            term = part.rows(self, theta, theta_t, lam, lam_dot, jacobian)
+            if term is None:
+                continue
+            if total is None:
+                total = list(term)
+                continue
+            for k, x in enumerate(term):
+                if x is not None:
+                    total[k] = x if total[k] is None else total[k] + x
+        return None if total is None else tuple(total)
+
+    def gyroscopic_rows(self, lam: np.ndarray | float) -> np.ndarray | float | None:
+        """g of the gyroscopic term g B Theta_t: the sum of the parts' (2 lam of Coriolis).
+
+        Parameters
+        ----------
+        lam : numpy.ndarray or float
+            Omega T at the m instants, shape (m,), or one value.
+
+        Returns
+        -------
+        numpy.ndarray or float or None
+            g, the shape of `lam`; None where no part has a gyroscopic force.
+        """
+        g = None
+        for part in self.parts:
+            term = part.gyroscopic(self, lam)
+            if term is not None:
+                g = term if g is None else g + term
+        return g
 
     @property
     def stiffness(self) -> np.ndarray:
@@ -143,10 +243,10 @@ class DiscreteElastica(GyroscopicModel):
 
     def kernel(self) -> tuple[Kernel | None, str]:
         """The compiled DOP853 march of `rotbeam.model.elastica_kernel`: its right-hand side for
-        every combination of effects (extension included: it only changes the grid's operators)
-        under a drive of harmonics.  A payload (its rotary inertia and its undamped mass), a
-        subclass such as the printed appendix, another drive law, or no numba leave the model to
-        the numpy path.
+        the standard parts (`rotbeam.model.loads.KERNEL_PARTS`, each at most once; extension
+        too: it only changes the grid's operators) under a drive of harmonics.  Another part, a
+        payload (its rotary inertia and its undamped mass), a subclass such as the printed
+        appendix, another drive law, or no numba leave the model to the numpy path.
 
         Returns
         -------
@@ -161,6 +261,9 @@ class DiscreteElastica(GyroscopicModel):
             return None, f"the kernel is DiscreteElastica's, not {type(self).__name__}'s"
         if self.grid.W_beam is not None or self.rotary:
             return None, "a payload (tip mass or inertia) is not in the kernel"
+        flags, why_not = self._kernel_flags()
+        if flags is None:
+            return None, why_not
         law = self.dl.law
         if not isinstance(law, HarmonicLaw):
             return None, f"the kernel's drive is a sum of harmonics, not a {type(law).__name__}"
@@ -168,9 +271,8 @@ class DiscreteElastica(GyroscopicModel):
             import numba  # noqa: F401
         except ImportError:
             return None, "numba is not installed"
-        g, ef = self.grid, self.effects
-        par = np.array([g.x0, self.hub_ratio, self.eta, law.lam0, ef.centrifugal, ef.softening,
-                        ef.euler, ef.coriolis], dtype=float)  # fmt: skip
+        g = self.grid
+        par = np.array([g.x0, self.hub_ratio, self.eta, law.lam0, *flags], dtype=float)
         harm = np.array([[k * law.omega, a, ph] for k, a, ph in law.terms], dtype=float)
         mats = (np.ascontiguousarray(m, dtype=float) for m in (g.W, g.K, g.P, g.Q))
         from . import elastica_kernel  # here: numba loads with the first compiled run only
@@ -179,50 +281,73 @@ class DiscreteElastica(GyroscopicModel):
         return Kernel(elastica_kernel.advance, elastica_kernel.rates, arguments), ""
 
     def euler_load_vector(self) -> np.ndarray:
-        """dL/d(lam_dot) at Theta = 0, in closed form: the straight beam's lever arm summed by Q.
-
-        Q (r_o + s) (the stretched positions with `extension`), plus a payload's rotary inertia
-        on the last row.
+        """dL/d(lam_dot) at Theta = 0, in closed form: the sum of the parts' (`Load.euler_vector`;
+        the Euler load's is the straight beam's lever arm summed by Q, Q (r_o + s), plus a
+        payload's rotary inertia on the last row).
 
         Returns
         -------
         numpy.ndarray
-            Shape (n,), dimensionless (zero with the Euler load off).
+            Shape (n,), dimensionless (zero without a load that depends on lam_dot).
         """
-        g = self.grid
-        if not self.effects.euler:
-            return np.zeros(self.n)
-        x = g.s if g.strain is None else g.positions(np.zeros(self.n))[0]
-        q = g.Q @ (self.hub_ratio + x)
-        if self.rotary:  # the payload's rotary inertia turns with the disk
-            q[-1] += self.rotary
+        q = np.zeros(self.n)
+        for part in self.parts:
+            term = part.euler_vector(self)
+            if term is not None:
+                q = q + term
         return q
 
+    def _kernel_flags(self) -> tuple[list[bool] | None, str]:
+        """The kernel's flags of its parts (centrifugal, softening, euler, coriolis), or None and
+        why the kernel does not cover the parts."""
+        kinds = [type(p) for p in self.parts]
+        unknown = [p.name for p in self.parts if type(p) not in KERNEL_PARTS]
+        if unknown:
+            return None, f"the kernel does not know the part(s) {', '.join(unknown)}"
+        if len(set(kinds)) < len(kinds):
+            return None, "the kernel takes each standard part once"
+        on = [cls in kinds for cls in KERNEL_PARTS[:4]]
+        if on[1] and not on[0]:
+            return None, "the kernel's softening goes with the centrifugal load"
+        return on, ""
+
     def _loads(self, c, s, lam, lam_dot):
-        """Nodal load parts of F_x, F_y (nodes 1..N) from cos and sin of the angles."""
+        """The parts' nodal forces F_x, F_y (nodes 1..N) from cos and sin of the angles, summed
+        in the order of the parts."""
         g = self.grid
         x = g.x0 + g.P @ c
         y = g.P @ s
         fx = np.zeros_like(x)
         fy = np.zeros_like(y)
-        ef = self.effects
-        if ef.centrifugal:
-            lam2 = lam * lam
-            fx = fx + lam2 * (self.hub_ratio + x)
-            if ef.softening:
-                fy = fy + lam2 * y
-        if ef.euler:
-            fx = fx + lam_dot * y
-            fy = fy - lam_dot * (self.hub_ratio + x)
+        for part in self.parts:
+            px, py = part.forces(self, x, y, lam, lam_dot)
+            if px is not None:
+                fx = fx + px
+            if py is not None:
+                fy = fy + py
         return fx, fy
+
+    def _slopes(self, c, s, lam, lam_dot):
+        """a, b of the summed forces' slopes, d(F_x)/dTheta = P diag(a) and
+        d(F_y)/dTheta = P diag(b), shape (m, n) each."""
+        a = np.zeros_like(c)
+        b = np.zeros_like(c)
+        for part in self.parts:
+            pa, pb = part.slopes(self, c, s, lam, lam_dot)
+            if pa is not None:
+                a = a + pa
+            if pb is not None:
+                b = b + pb
+        return a, b
 
     def load_torque_rows(
         self, theta: np.ndarray, lam: np.ndarray, lam_dot: np.ndarray, jacobian: bool = False
     ) -> np.ndarray | tuple[np.ndarray, np.ndarray]:
         """L = sin Theta * Q F_x - cos Theta * Q F_y at m instants, and dL/dTheta (exact).
 
-        F holds the load parts of the nodal forces only (centrifugal, softening, Euler); the
-        payload's rotary inertia adds j / ds lam_dot to the last row with the Euler load on.
+        F sums the parts' nodal forces (`Load.forces`: centrifugal, softening, Euler, ...); the
+        parts' own torques follow (`Load.torques`: the payload's rotary inertia's j / ds lam_dot
+        on the last row with the Euler load).
 
         Parameters
         ----------
@@ -238,33 +363,28 @@ class DiscreteElastica(GyroscopicModel):
         numpy.ndarray or tuple
             L (m, n), dimensionless torques; with `jacobian`, (L, dL/dTheta).
         """
-        g, ef = self.grid, self.effects
+        g = self.grid
         lam, lam_dot = np.asarray(lam, dtype=float), np.asarray(lam_dot, dtype=float)
         c, s = np.cos(theta), np.sin(theta)
         fx, fy = self._loads(c.T, s.T, lam, lam_dot)
         nx, ny = (g.Q @ fx).T, (g.Q @ fy).T
         torque = s * nx - c * ny
-        if self.rotary and ef.euler:  # J dOmega/dt on the payload, on the last angle's row
-            torque[:, -1] += self.rotary * lam_dot
+        own = [p.torques(self, theta, lam, lam_dot, jacobian) for p in self.parts]
+        own = [term for term in own if term is not None]
+        for term in own:
+            torque = torque + term[0]
         if not jacobian:
             return torque
         # dL/dTheta = diag(C n_x + S n_y) + S W diag(a) - C W diag(b), from
-        # d(F_x)/dTheta = P diag(a) = P (-lam^2 S + lam_dot C) and
-        # d(F_y)/dTheta = P diag(b) = P (lam_dot S + [softening] lam^2 C)
-        lam2, ld = (lam * lam)[:, None], lam_dot[:, None]
-        a = np.zeros_like(theta)
-        b = np.zeros_like(theta)
-        if ef.centrifugal:
-            a = a - lam2 * s
-            if ef.softening:
-                b = b + lam2 * c
-        if ef.euler:
-            a = a + ld * c
-            b = b + ld * s
+        # d(F_x)/dTheta = P diag(a) and d(F_y)/dTheta = P diag(b) (`Load.slopes`)
+        a, b = self._slopes(c, s, lam, lam_dot)
         J = s[:, :, None] * a[:, None, :] - c[:, :, None] * b[:, None, :]
         J *= g.W[None]
         idx = np.arange(self.n)
         J[:, idx, idx] += c * nx + s * ny
+        for term in own:
+            if term[1] is not None:
+                J += term[1]
         return torque, J
 
     def tension(
@@ -277,10 +397,10 @@ class DiscreteElastica(GyroscopicModel):
     ) -> tuple[np.ndarray, np.ndarray]:
         """Internal force n_x, n_y at nodes 1..N-1 at one instant (a diagnostic).
 
-        n = Q g with g = F - r_tt - eta r_t (+ Coriolis), the rotating frame's components,
-        without the half of the tip's force that the last row's moment balance carries (Q's
-        half torque); the tests check the straight beam's centrifugal tension and the
-        extension's strain with it.
+        n = Q g with g = F - r_tt - eta r_t (+ the parts' gyroscopic force), the rotating
+        frame's components, without the half of the tip's force that the last row's moment
+        balance carries (Q's half torque); the tests check the straight beam's centrifugal
+        tension and the extension's strain with it.
 
         Parameters
         ----------
@@ -302,9 +422,10 @@ class DiscreteElastica(GyroscopicModel):
         xtt = -g.P @ (s * theta_tt + c * theta_t**2)
         ytt = g.P @ (c * theta_tt - s * theta_t**2)
         gx, gy = fx - xtt, fy - ytt
-        if self.effects.coriolis:
-            gx = gx + 2 * lam * yt
-            gy = gy - 2 * lam * xt
+        rate = self.gyroscopic_rows(lam)  # the gyroscopic force rate (y_t, -x_t)
+        if rate is not None:
+            gx = gx + rate * yt
+            gy = gy - rate * xt
         Qd = g.Q if g.Q_beam is None else g.Q_beam  # the payload has no damping of its own
         nx, ny = g.Q @ gx - self.eta * (Qd @ xt), g.Q @ gy - self.eta * (Qd @ yt)
         if self.dl.tip_mass:  # the last row's half torque belongs to the moment scheme

@@ -12,7 +12,6 @@ import numpy as np
 from scipy.linalg import lu_factor
 
 from .base import DiscreteModel, Residual
-from .params import Effects
 from .rows import matvec_rows
 
 
@@ -20,29 +19,27 @@ class GyroscopicModel(DiscreteModel):
     """A model whose residual has the rotating elastica's structure::
 
         R = M(Theta) Theta_tt + eta Md(Theta) Theta_t + S(Theta) Theta_t^2
-            + 2 lam B(Theta) Theta_t + K Theta + L(Theta; lam, lam_dot),
+            + g B(Theta) Theta_t + K Theta + L(Theta; lam, lam_dot),
 
-    with the Coriolis term only when `effects.coriolis` is on and Md = M unless the model says
-    otherwise (`damping_rows`: a payload has no damping of its own).  A subclass gives M and B
-    (`inertia_rows`), K (`stiffness`), the loads L and their exact Jacobian (`load_torque_rows`)
-    and `at`; S is B unless it says otherwise (`velocity_matrix_rows`).  The residual and its
-    blocks follow here (`residual_rows`), matrix-free where the identities allow.
+    with the gyroscopic term only where the model has one (`gyroscopic_rows`: g = 2 lam of the
+    Coriolis load) and Md = M unless the model says otherwise (`damping_rows`: a payload has no
+    damping of its own).  A subclass gives M and B (`inertia_rows`), K (`stiffness`), the loads
+    L and their exact Jacobian (`load_torque_rows`) and `at`; S is B unless it says otherwise
+    (`velocity_matrix_rows`).  The residual and its blocks follow here (`residual_rows`),
+    matrix-free where the identities allow.
 
     Attributes
     ----------
     eta : float
-        Damping applied (0 with `effects.damping` off).
-    effects : Effects
-        The loads the model computes.
+        Damping applied (0 without damping).
     """
 
     eta: float
-    effects: Effects
 
     @property
     def damped(self) -> bool:
-        """Whether the damping is on (eta > 0)."""
-        return self.eta > 0.0
+        """Whether any motion decays: eta > 0, or a load's linear damping (`DiscreteModel`)."""
+        return self.eta > 0.0 or super().damped
 
     @abstractmethod
     def inertia_rows(self, theta: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -125,8 +122,52 @@ class GyroscopicModel(DiscreteModel):
         """
         return B
 
+    def rate_load_rows(
+        self,
+        theta: np.ndarray,
+        theta_t: np.ndarray,
+        lam: np.ndarray,
+        lam_dot: np.ndarray,
+        jacobian: bool = False,
+    ) -> tuple | None:
+        """Loads beyond L, the gyroscopic and the damping terms, any function of the angles and
+        their rates (a drag, say), with their blocks.
+
+        Parameters
+        ----------
+        theta, theta_t : numpy.ndarray
+            Angles [rad] and their rates (1/T), shape (m, n) each.
+        lam, lam_dot : numpy.ndarray
+            Omega T and its rate of change at the m instants, shape (m,).
+        jacobian : bool
+            Also give the blocks.
+
+        Returns
+        -------
+        tuple or None
+            (T, dT/dTheta, dT/dTheta_t): T of shape (m, n), the blocks (m, n, n) with
+            `jacobian` (None: zero); None (the default): no such load.
+        """
+        return None
+
+    def gyroscopic_rows(self, lam: np.ndarray | float) -> np.ndarray | float | None:
+        """g of the gyroscopic term g B Theta_t at m instants (2 lam of the Coriolis load).
+
+        Parameters
+        ----------
+        lam : numpy.ndarray or float
+            Omega T at the m instants, shape (m,), or one value.
+
+        Returns
+        -------
+        numpy.ndarray or float or None
+            g, the shape of `lam` (units of 1/T); None (the default): no gyroscopic term.
+        """
+        return None
+
     def velocity_vector(self, theta_t: np.ndarray, lam: np.ndarray | float) -> np.ndarray:
-        """What B multiplies: v = Theta_t^2, plus 2 lam Theta_t with Coriolis on.
+        """What B multiplies: v = Theta_t^2, plus g Theta_t with a gyroscopic term
+        (`gyroscopic_rows`).
 
         Parameters
         ----------
@@ -141,9 +182,9 @@ class GyroscopicModel(DiscreteModel):
             v, the shape of `theta_t`.
         """
         v = theta_t**2
-        if self.effects.coriolis:
-            lam = np.asarray(lam, dtype=float)
-            v = v + 2.0 * (lam[:, None] if lam.ndim else lam) * theta_t
+        g = self.gyroscopic_rows(np.asarray(lam, dtype=float))
+        if g is not None:
+            v = v + (g[:, None] if np.ndim(g) else g) * theta_t
         return v
 
     def residual_rows(
@@ -157,7 +198,7 @@ class GyroscopicModel(DiscreteModel):
     ) -> ResidualRows:
         """The equation of motion as a residual at m instants, with what its blocks reuse.
 
-        R = M (Theta_tt + eta Theta_t) + S Theta_t^2 + 2 lam B Theta_t + K Theta + L, with
+        R = M (Theta_tt + eta Theta_t) + S Theta_t^2 + g B Theta_t + K Theta + L, with
         eta Md Theta_t in place of eta M Theta_t where the damping has its own mass matrix
         (`damping_rows`): zero where (Theta, Theta_t, Theta_tt) is a motion of the model.  What
         collocation solves at its instants; `ResidualRows.blocks` gives dR/dTheta, dR/dTheta_t
@@ -203,7 +244,24 @@ class GyroscopicModel(DiscreteModel):
             R += self.load_torque_rows(theta, lam, lam_dot)
         if S is not Bm:  # a model whose squared rates carry another matrix than B
             R += matvec_rows(S - Bm, theta_t * theta_t)
-        return ResidualRows(self, theta, theta_t, a, lam, lam_dot, Mm, Bm, v, damp, R, dL)
+        rate = self.rate_load_rows(theta, theta_t, lam, lam_dot, jacobian)
+        if rate is not None:
+            R += rate[0]
+        return ResidualRows(
+            self,
+            theta,
+            theta_t,
+            a,
+            lam,
+            lam_dot,
+            Mm,
+            Bm,
+            v,
+            damp,
+            R,
+            dL,
+            (rate,) if jacobian else None,
+        )
 
     # --- the static problem, faster than the residual at rest -----------------------------------
     def static_rows(
@@ -229,11 +287,18 @@ class GyroscopicModel(DiscreteModel):
             The residual (m, n), dimensionless torques; with `jacobian`, (residual, Jacobians).
         """
         K = self.stiffness
+        rate = self.rate_load_rows(theta, np.zeros_like(theta), lam, lam_dot, jacobian)
         if not jacobian:
-            return theta @ K.T + self.load_torque_rows(theta, lam, lam_dot)
+            R = theta @ K.T + self.load_torque_rows(theta, lam, lam_dot)
+            return R if rate is None else R + rate[0]
         torque, dL = self.load_torque_rows(theta, lam, lam_dot, jacobian=True)
         dL += K[None]
-        return theta @ K.T + torque, dL
+        R = theta @ K.T + torque
+        if rate is None:
+            return R, dL
+        if rate[1] is not None:
+            dL += rate[1]
+        return R + rate[0], dL
 
 
 class ResidualRows(Residual):
@@ -246,11 +311,16 @@ class ResidualRows(Residual):
         The residual, shape (m, n), dimensionless torques.
     """
 
-    def __init__(self, model, theta, theta_t, a, lam, lam_dot, Mm, Bm, v, damp, R, dL=None):
+    def __init__(
+        self, model, theta, theta_t, a, lam, lam_dot, Mm, Bm, v, damp, R, dL=None, rate=None
+    ):
         self.model, self.theta, self.theta_t, self.a = model, theta, theta_t, a
         self.lam, self.lam_dot = lam, lam_dot
         self.Mm, self.Bm, self.v, self.damp, self.R = Mm, Bm, v, damp, R
         self.dL = dL  #: the loads' Jacobian, when `residual_rows` was asked for it
+        #: (the rate-dependent loads with their blocks,) once evaluated with them
+        #: (`GyroscopicModel.rate_load_rows`); None: not yet
+        self.rate = rate
         self._lu = None  #: the LU of the one mass matrix, once `mass_solve` has made it
 
     def mass(self) -> np.ndarray:
@@ -297,8 +367,9 @@ class ResidualRows(Residual):
         out = p @ m.stiffness.T + matvec_rows(self.dL, p) - matvec_rows(Mm, v * p)
         out += matvec_rows(Bm, a * p) - (matvec_rows(Bm, a) - matvec_rows(Mm, v)) * p
         dv = 2.0 * V * q
-        if m.effects.coriolis:
-            dv = dv + 2.0 * lam[:, None] * q
+        g = m.gyroscopic_rows(lam)
+        if g is not None:
+            dv = dv + g[:, None] * q
         out += matvec_rows(Bm, dv)
         if damp is None:
             out += m.eta * matvec_rows(Mm, q)
@@ -306,7 +377,19 @@ class ResidualRows(Residual):
             Md, Bd = damp
             out += m.eta * (matvec_rows(Bd, V * p) - matvec_rows(Bd, V) * p)
             out += m.eta * matvec_rows(Md, q)
+        rate = self._rate_blocks()
+        if rate is not None:
+            for block, x in zip(rate[1:], (p, q), strict=True):
+                if block is not None:
+                    out += matvec_rows(block, x)
         return out
+
+    def _rate_blocks(self) -> tuple | None:
+        """The rate-dependent loads' blocks at these rows, evaluated once (None: no such load)."""
+        if self.rate is None:
+            m = self.model
+            self.rate = (m.rate_load_rows(self.theta, self.theta_t, self.lam, self.lam_dot, True),)
+        return self.rate[0]
 
     def solved(self, keep_lu: bool = False) -> np.ndarray:
         """The accelerations that zero the residual at these angles and rates: the residual is
@@ -348,8 +431,9 @@ class ResidualRows(Residual):
         Ba = matvec_rows(Bm, a)
         Mv = matvec_rows(Mm, v)
         dv = 2.0 * V
-        if m.effects.coriolis:
-            dv = dv + 2.0 * self.lam[:, None]
+        g = m.gyroscopic_rows(self.lam)
+        if g is not None:
+            dv = dv + g[:, None]
         Cj = m.eta * (Mm if damp is None else damp[0]) + Bm * dv[:, None, :]
         if self.dL is None:
             self.dL = m.load_torque_rows(theta, self.lam, self.lam_dot, jacobian=True)[1]
@@ -360,4 +444,10 @@ class ResidualRows(Residual):
             Bd = damp[1]
             Lj += m.eta * (Bd * V[:, None, :])
             Lj[:, idx, idx] -= m.eta * matvec_rows(Bd, V)
+        rate = self._rate_blocks()
+        if rate is not None:
+            if rate[1] is not None:
+                Lj += rate[1]
+            if rate[2] is not None:
+                Cj = Cj + rate[2]
         return Lj, Cj, Mm
