@@ -29,12 +29,15 @@ from rotbeam.runs.sweeps import sweep
 from rotbeam.solve.numerics import Numerics
 
 N = 10
-PAYLOAD = Beam(tip_mass=0.004, tip_inertia=2e-7)
+BARE = Beam()
+PAYLOAD = Beam(tip_mass=0.004, tip_inertia=2e-6)
 
 
-def _scene(beam=Beam(), drive=None, model="elastica", modes=3, **num) -> Scene:
+def _scene(beam=BARE, drive=None, model="elastica", modes=3, tail_tol=1e-8, **num) -> Scene:
     drive = drive if drive is not None else Drive(omega0=10.0, amplitude=3.0, f_d=4.0)
-    return Scene(beam, drive, Effects(), Numerics(N=N, model=model, modes=modes, **num))
+    num = Numerics(N=N, model=model, modes=modes, tail_tol=tail_tol, samples_per_period=256,
+                   **num)  # fmt: skip
+    return Scene(beam, drive, Effects(), num)
 
 
 def _pair(scene: Scene) -> tuple[Scene, Scene]:
@@ -44,10 +47,12 @@ def _pair(scene: Scene) -> tuple[Scene, Scene]:
     return full, modal
 
 
-@pytest.mark.parametrize("beam", [Beam(), PAYLOAD], ids=["bare", "payload"])
+@pytest.mark.parametrize("beam, drive", [(Beam(), Drive(omega0=10.0, amplitude=3.0, f_d=4.0)),
+                                         (PAYLOAD, Drive(omega0=10.0, amplitude=1.0, f_d=3.0))],
+                         ids=["bare", "payload"])  # fmt: skip
 @pytest.mark.parametrize("certify", ["monodromy", "time"])
-def test_every_mode_simulates_the_elastica(beam, certify):
-    full, modal = (simulate(s) for s in _pair(_scene(beam, certify=certify)))
+def test_every_mode_simulates_the_elastica(beam, drive, certify):
+    full, modal = (simulate(s) for s in _pair(_scene(beam, drive, certify=certify)))
     assert full.dynamic.converged and modal.dynamic.converged
     for key in ("rms_dynamic", "rms_quasistatic", "delta_rms"):
         assert getattr(modal, key) == pytest.approx(getattr(full, key), rel=1e-6)
@@ -56,13 +61,13 @@ def test_every_mode_simulates_the_elastica(beam, certify):
     obs_full, obs_modal = full.observables(names), modal.observables(names)
     for name in names:
         for key in ("rms_dynamic", "peak_dynamic", "peak_quasistatic"):
-            assert obs_modal[name][key] == pytest.approx(obs_full[name][key], rel=1e-5)
+            assert obs_modal[name][key] == pytest.approx(obs_full[name][key], rel=1e-7)
 
 
 def test_every_mode_sweeps_and_finds_f_d_star_as_the_elastica():
     full, modal = _pair(_scene(drive=Drive(omega0=10.0, amplitude=2.0, f_d=2.0)))
     a, b = sweep(full, [2.0, 3.0]), sweep(modal, [2.0, 3.0])
-    np.testing.assert_allclose(b.rows()["delta_rms"], a.rows()["delta_rms"], rtol=1e-6)
+    np.testing.assert_allclose(b.rows["delta_rms"], a.rows["delta_rms"], rtol=1e-6)
     ca, cb = rotbeam.critical(full, 0.2), rotbeam.critical(modal, 0.2)
     assert cb.f_d_star == pytest.approx(ca.f_d_star, rel=1e-4)
 
@@ -70,8 +75,9 @@ def test_every_mode_sweeps_and_finds_f_d_star_as_the_elastica():
 def test_every_mode_runs_a_move_as_the_elastica(tmp_path):
     path = tmp_path / "move.csv"
     t = np.linspace(0.0, 0.3, 31)
-    path.write_text("t,omega\n" + "\n".join(f"{a!r},{4.0 * np.sin(np.pi * a / 0.6) ** 2!r}"
-                                            for a in t) + "\n")  # fmt: skip
+    omega = 4.0 * np.sin(np.pi * t / 0.6) ** 2
+    rows = [f"{a!r},{w!r}\n" for a, w in zip(t.tolist(), omega.tolist(), strict=True)]
+    path.write_text("t,omega\n" + "".join(rows))
     spec = {"beam": {}, "drive": {"move": str(path), "settle": 0.2},
             "numerics": {"N": N, "model": "elastica"}}  # fmt: skip
     full = rotbeam.build_scene(spec)
@@ -92,7 +98,7 @@ def test_effect_budget_on_the_modal_model_is_the_elastica_s():
         assert sb[name] == pytest.approx(sa[name], rel=1e-4, abs=1e-8)
 
 
-def _full_model(lam0: float, beam=Beam()) -> DiscreteElastica:
+def _full_model(lam0: float, beam=BARE) -> DiscreteElastica:
     scene = _scene(beam, Drive(omega0=lam0 / beam.T, amplitude=0.5, f_d=3.0))
     return DiscreteElastica(scene.dimensionless, 40)
 
@@ -120,11 +126,11 @@ def test_modal_rms_converges_to_the_elastica_s_as_n_grows():
                     numerics=Numerics(N=24))  # fmt: skip
     full = simulate(scene)
     errors = []
-    for n in (1, 2, 3, 5):
+    for n in (1, 3, 5, 8, 12):  # measured 1.3e-2, 1.4e-4, 1.3e-5, 6.4e-7, 8.1e-8
         res = simulate(replace(scene, numerics=Numerics(N=24, model="modal", modes=n)))
         errors.append(abs(res.rms_dynamic / full.rms_dynamic - 1))
     assert errors == sorted(errors, reverse=True)
-    assert errors[-1] < 1e-3 and errors[0] > 10 * errors[-1]
+    assert errors[0] > 1e-3 and errors[-1] < 1e-6
 
 
 @pytest.mark.parametrize("omega0, amplitude, f_d", [(5.0, 0.5, 3.0), (10.0, 1.0, 4.0),
@@ -139,11 +145,13 @@ def test_one_mode_is_the_surrogate_at_small_amplitude(omega0, amplitude, f_d):
 
 
 def test_cli_model_modal_is_the_api():
+    flags = ["--N", str(N), "--model", "modal", "--modes", "3", "--json"]
     code, out, err = run_main(["simulate", "--omega0", "10", "--amplitude", "3", "--fd", "4",
-                               "--N", str(N), "--model", "modal", "--modes", "3", "--json"])  # fmt: skip
+                               *flags])  # fmt: skip
     assert code == 0, err
     d = json.loads(out)
-    res = simulate(_scene(model="modal", modes=3))
+    drive = Drive(omega0=10.0, amplitude=3.0, f_d=4.0)
+    res = simulate(Scene(Beam(), drive, Effects(), Numerics(N=N, model="modal", modes=3)))
     assert d["rms_dynamic"] == pytest.approx(res.rms_dynamic, rel=1e-9)
 
 
