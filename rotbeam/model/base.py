@@ -522,10 +522,11 @@ class Kernel:
     Parameters
     ----------
     advance : callable
-        advance(y, stops, h, rtol, atol, tangent, *arguments, saved, counts) -> (status, h):
-        DOP853 through the stops in place (the state and, with `tangent`, its tangent).
+        ``advance(y, stops, h, rtol, atol, tangent, *arguments, saved, counts)`` ->
+        ``(status, h)``: DOP853 through the stops in place (the state and, with `tangent`, its
+        tangent).
     rates : callable
-        rates(t, y, out, tangent, *arguments): the first-order right-hand side in place.
+        ``rates(t, y, out, tangent, *arguments)``: the first-order right-hand side in place.
     arguments : tuple
         What both read after their own arguments.
     """
