@@ -170,3 +170,34 @@ def test_modes_out_of_range_from_python_is_one_line():
         Numerics(N=N, model="modal", modes=12)
     with pytest.raises(RotbeamInputError, match="allowed 1 to 9"):
         ModalModel(DiscreteElastica(_scene().dimensionless, N), 10)
+
+
+COMMANDS = {
+    "simulate": ["simulate", "--fd", "3", "--observe", "root_moment"],
+    "critical": ["critical"],
+    "effects": ["effects", "--fd", "3"],
+    "sweep": ["sweep", "--fd-min", "2", "--fd-max", "4", "--points", "3"],
+}
+
+
+def _numbers(value) -> list[float]:
+    """Every float of a JSON answer but the timings, in order."""
+    if isinstance(value, dict):
+        keys = [k for k in value if "second" not in k and k not in ("message", "note")]
+        return [x for k in keys for x in _numbers(value[k])]
+    if isinstance(value, list):
+        return [x for v in value for x in _numbers(v)]
+    return [float(value)] if isinstance(value, float) else []
+
+
+@pytest.mark.parametrize("command", list(COMMANDS))
+def test_every_command_line_on_every_mode_is_the_elastica_s(command):
+    common = ["--omega0", "10", "--amplitude", "1", "--N", str(N), "--json"]
+    code, out, err = run_main([*COMMANDS[command], *common])
+    assert code == 0, err
+    code_m, out_m, err_m = run_main([*COMMANDS[command], *common, "--model", "modal",
+                                     "--modes", str(N - 1)])  # fmt: skip
+    assert code_m == 0, err_m
+    full, modal = _numbers(json.loads(out)), _numbers(json.loads(out_m))
+    assert len(full) == len(modal) > 2
+    np.testing.assert_allclose(modal, full, rtol=1e-4, atol=1e-9)

@@ -18,7 +18,7 @@ import pandas as pd
 from ..config.errors import RotbeamInputError
 from ..runs.move import simulate_move
 from ..runs.observables import OBSERVABLES, observable_names
-from ..runs.scene import Scene, build_scene, simulate
+from ..runs.scene import Scene, build_scene, model_name, simulate
 from .verdict import judge, judge_move
 
 #: the table's columns, a scene a row
@@ -198,6 +198,7 @@ def judge_scenes(
     for name, scene in build_scenes(specs, base).items():  # all checked before any runs
         t0 = time.perf_counter()
         row: dict[str, Any] = {"scene": name, "drive": scene.drive.kind, "N": scene.numerics.N,
+                               "model": model_name(scene.numerics),
                                "tip_mass_kg": scene.beam.tip_mass}  # fmt: skip
         if not scene.drive.periodic:
             res = simulate_move(scene)

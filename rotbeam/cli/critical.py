@@ -54,6 +54,7 @@ def run(args: argparse.Namespace) -> int:
     criterion = options.criterion_request(args, inputs)
 
     from ..analysis.verdict import critical, critical_start_hz
+    from ..runs.scene import model_name
     from ..solve.timebudget import TimeBudget
 
     time_budget = TimeBudget(scene.numerics.max_seconds)  # the whole command's
@@ -69,7 +70,7 @@ def run(args: argparse.Namespace) -> int:
         res = critical(scene, threshold, ftol, progress=b.update, time_budget=time_budget,
                        criterion=criterion)  # fmt: skip
     out = res.as_dict() | {"omega0": scene.drive.mean_speed, "amplitude": scene.drive.swing,
-                           "N": scene.numerics.N,
+                           "N": scene.numerics.N, "model": model_name(scene.numerics),
                            "effects": ",".join(scene.effects.active())} | out  # fmt: skip
     prop = None
     if inputs:

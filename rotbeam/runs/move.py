@@ -23,7 +23,7 @@ from ..model.modes import resonance_frequency_hz
 from ..solve.quasistatic import QuasiStaticError, quasistatic_series, solve_static
 from ..solve.system import FirstOrderSystem, OutOfTime
 from .observables import OBSERVABLES, States, compare, observable_names, still
-from .scene import Scene, folded
+from .scene import Scene, folded, model_name
 
 #: without `settle`: integrate first-mode periods after the move until |y_m| over one of them
 #: stays below this share of the peak, at most SETTLE_PERIODS of them
@@ -130,7 +130,8 @@ class MoveResult:
                 "delta_rms", "residual_ym", "settling_time_s", "settle_s", "move_s",
                 "converged", "message", "nfev", "seconds")  # fmt: skip
         out = {k: getattr(self, k) for k in keys}
-        out.update({"N": self.scene.numerics.N, "drive": "move",
+        out.update({"N": self.scene.numerics.N, "model": model_name(self.scene.numerics),
+                    "drive": "move",
                     "effects": ",".join(self.scene.effects.active())})  # fmt: skip
         return out
 

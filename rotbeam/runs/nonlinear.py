@@ -23,6 +23,7 @@ from ..solve.beam_branch import BeamBranch, beam_branch
 from ..solve.continuation import Branch
 from ..solve.numerics import Numerics
 from ..solve.steady import steady_state
+from .scene import discrete_model
 
 #: the arms of the branch and their direction in f_d
 ARMS = {"from_below": 1.0, "from_above": -1.0}
@@ -296,7 +297,7 @@ def follow_sweep(
         dl = Dimensionless.from_physical(
             beam, Drive(omega0=spec.omega0, f_d=float(f), amplitude=spec.amplitude), effects
         )
-        model = DiscreteElastica(dl, num.N)
+        model = discrete_model(dl, num)
         ss = steady_state(model, num, state0=state, guess=guess if state is None else None)
         state = ss.state if ss.state is not None else state
         rows.append(

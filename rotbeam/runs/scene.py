@@ -113,6 +113,21 @@ class Scene:
         return discrete_model(self.dimensionless, self.numerics, N)
 
 
+def model_name(num: Numerics) -> str:
+    """'elastica', or 'modal n' for the modal model of n modes: the model a result comes from.
+
+    Parameters
+    ----------
+    num : Numerics
+        model and modes.
+
+    Returns
+    -------
+    str
+    """
+    return "elastica" if num.model == "elastica" else f"modal {num.modes}"
+
+
 def discrete_model(dl: Dimensionless, num: Numerics, N: int | None = None) -> DiscreteModel:
     """The discrete model numerics ask for: the elastica on N intervals, or its modal model.
 
@@ -401,6 +416,7 @@ class SceneResult:
             "amplitude": drive.swing,
             "f_d": drive.f_d,
             "N": self.scene.numerics.N,
+            "model": model_name(self.scene.numerics),
             "method": self.scene.numerics.method,
             "effects": ",".join(self.scene.effects.active()),
             "seconds": self.seconds,

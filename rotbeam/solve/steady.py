@@ -470,7 +470,7 @@ def tolerances(
     return Tolerances(rho=rho, rtol=rtol, rtol_first=max(rtol, check), scale=scale, wref=wref)
 
 
-class PeriodStepper:
+class TransientStepper:
     """One `solve_ivp` over whole drive periods, within the wall-time budget, sampled `samples`
     times a period (`window_samples`); counts the right-hand side and Jacobian evaluations over
     all its calls (`nfev`, `njev`)."""
@@ -533,7 +533,7 @@ class PeriodStepper:
         return sol
 
 
-def _out_of_time(stepper: PeriodStepper, k: int, bound: float) -> str:
+def _out_of_time(stepper: TransientStepper, k: int, bound: float) -> str:
     """No steady state: which phase the budget cut, and the transient bound it left."""
     where = f"the time stepping at {stepper.model.label} after {k} whole periods"
     return (
@@ -608,7 +608,7 @@ class March:
 
 
 def march(
-    stepper: PeriodStepper,
+    stepper: TransientStepper,
     z: np.ndarray,
     from_orbit: bool,
     progress: Callable[[int, float], None] | None = None,
@@ -622,7 +622,7 @@ def march(
 
     Parameters
     ----------
-    stepper : PeriodStepper
+    stepper : TransientStepper
         The solver, its tolerances and deadline.
     z : numpy.ndarray
         The state at tau = 0, shape (2 n,).
@@ -699,7 +699,7 @@ class Window:
 
 
 def rms_window(
-    stepper: PeriodStepper, run: March, periodic: PeriodicResult | None, from_orbit: bool
+    stepper: TransientStepper, run: March, periodic: PeriodicResult | None, from_orbit: bool
 ) -> Window:
     """The samples to report once the march stopped.
 
@@ -710,7 +710,7 @@ def rms_window(
 
     Parameters
     ----------
-    stepper : PeriodStepper
+    stepper : TransientStepper
         The solver the march used.
     run : March
         Where the march stopped.
@@ -825,7 +825,7 @@ def steady_state(
 
     The steps: the initial state (`starting_state`), the certificate of a collocated orbit
     (`certify_refining`), the stepper's tolerances (`tolerances`), the march period by
-    period to the steady state (`march`, with a `PeriodStepper`), the RMS window (`rms_window`)
+    period to the steady state (`march`, with a `TransientStepper`), the RMS window (`rms_window`)
     and the stability of what is reported (`reported_stability`).  Never raises for a solver
     failure: the result says whether a steady state was reached and why not.
 
@@ -888,7 +888,7 @@ def steady_state(
     tol = tolerances(model, num, z, response_scale, periodic, from_orbit)
     if unstable_orbit:
         z = leave_orbit(z, orbit_fl, tol.scale)
-    stepper = PeriodStepper(model, num, tol, budget, window_samples(model.dl, num, periodic))
+    stepper = TransientStepper(model, num, tol, budget, window_samples(model.dl, num, periodic))
     run = march(stepper, z, from_orbit, progress)
     win = rms_window(stepper, run, periodic, from_orbit)
     status, message, fl = reported_stability(model, num, win, orbit_fl, from_orbit, periodic)
