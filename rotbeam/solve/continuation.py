@@ -17,6 +17,7 @@ import numpy as np
 import scipy.linalg as sla
 
 from .floquet import FloquetResult, orbit_floquet
+from .newton import newton as solve_newton
 from .spectral import fourier_diff_matrix
 
 
@@ -216,7 +217,8 @@ class FirstOrderProblem(BranchProblem):
 def newton(
     problem: BranchProblem, x: np.ndarray, p: float, tol: float = 1e-10, maxiter: int = 30
 ) -> tuple[np.ndarray, bool]:
-    """Newton on R(x, p) = 0 at fixed p, with dense solves: the first orbit of a branch.
+    """Newton on R(x, p) = 0 at fixed p, with dense solves and full steps: the first orbit of a
+    branch (`rotbeam.solve.newton.newton`, undamped, the step against tol max(1, |x|)).
 
     Parameters
     ----------
@@ -238,13 +240,16 @@ def newton(
     converged : bool
         Whether the step fell below the tolerance.
     """
-    for _ in range(maxiter):
-        R = problem.residual(x, p)
-        dx = sla.solve(problem.jacobian(x, p), -R)
-        x = x + dx
-        if np.max(np.abs(dx)) <= tol * max(1.0, np.max(np.abs(x))):
-            return x, True
-    return x, False
+    res = solve_newton(
+        lambda z: problem.residual(z, p),
+        lambda z, r: sla.solve(problem.jacobian(z, p), -r),
+        x,
+        tol,
+        maxiter,
+        damped=False,
+        floor=1.0,
+    )
+    return res.x, res.converged
 
 
 @dataclass
@@ -319,23 +324,22 @@ def _tangent(problem: BranchProblem, x, p, prev: np.ndarray, w: np.ndarray) -> n
 
 
 def _correct(problem: BranchProblem, y_pred, t, w, tol: float, maxiter: int = 8):
-    """Newton on [R(y); t.W^2 (y - y_pred)] = 0; returns (y, iterations) or (None, maxiter)."""
-    y = y_pred.copy()
-    for it in range(1, maxiter + 1):
+    """Newton on [R(y); t.W^2 (y - y_pred)] = 0 with full steps and the weighted step test
+    max |w dy| <= tol (`rotbeam.solve.newton.newton`); returns (y, iterations) or
+    (None, maxiter).  A corrector that wanders out of the problem's range (e.g. p <= 0, where
+    the residual raises ValueError) has failed."""
+    tw = t * w * w
+
+    def residual(y: np.ndarray) -> np.ndarray:
+        return np.append(problem.residual(y[:-1], y[-1]), np.dot(tw, y - y_pred))
+
+    def direction(y: np.ndarray, G: np.ndarray) -> np.ndarray:
         x, p = y[:-1], y[-1]
-        try:  # a corrector that wanders out of the problem's range (e.g. p <= 0) has failed
-            R = problem.residual(x, p)
-            G = np.append(R, np.dot(t * w * w, y - y_pred))
-            J = np.column_stack([problem.jacobian(x, p), problem.dR_dp(x, p)])
-            dy = sla.solve(np.vstack([J, t * w * w]), -G)
-        except (sla.LinAlgError, ValueError):
-            return None, maxiter
-        y = y + dy
-        if not np.all(np.isfinite(y)):
-            return None, maxiter
-        if np.max(np.abs(dy * w)) <= tol:
-            return y, it
-    return None, maxiter
+        J = np.column_stack([problem.jacobian(x, p), problem.dR_dp(x, p)])
+        return sla.solve(np.vstack([J, tw]), -G)
+
+    res = solve_newton(residual, direction, y_pred.copy(), tol, maxiter, damped=False, weights=w)
+    return (res.x, res.iterations) if res.converged else (None, maxiter)
 
 
 def _most_negative(fl: FloquetResult) -> float:

@@ -9,7 +9,7 @@ import numpy as np
 
 from ..model.base import DiscreteModel
 from ..model.rows import matvec_rows
-from .newton import newton
+from .newton import newton, step_converged
 
 
 class QuasiStaticError(RuntimeError):
@@ -156,8 +156,7 @@ def shared_chord(
         if not np.all(np.isfinite(theta)) or size > CHORD_CONTRACTION * previous:
             return theta, False
         previous = size
-        scale = np.maximum(np.max(np.abs(theta), axis=1), 1e-300)
-        if np.all(np.max(np.abs(step), axis=1) <= rtol * scale):
+        if step_converged(step, theta, rtol, axis=-1):
             return theta, True
     return theta, False
 
@@ -204,26 +203,29 @@ def batched_static(
         return theta
     if not np.all(np.isfinite(theta)):
         theta = np.zeros((lam.size, model.n))
-    inverse = None
-    for _ in range(maxiter):
-        if inverse is None:
-            r, J = model.static_rows(theta, lam, lam_dot, jacobian=True)
-            try:
-                inverse = np.linalg.inv(J)
-            except np.linalg.LinAlgError:
-                return None
-        else:
-            r = model.static_rows(theta, lam, lam_dot)
-        step = -matvec_rows(inverse, r)
-        theta = theta + step
-        if not np.all(np.isfinite(theta)):
-            return None
-        scale = np.maximum(np.max(np.abs(theta), axis=1), 1e-300)
-        if np.all(np.max(np.abs(step), axis=1) <= rtol * scale):
-            return theta
-        if float(np.max(np.abs(theta))) > CHORD_MAX_ANGLE:
-            inverse = None  # large angles: a fresh Jacobian at every iteration (plain Newton)
-    return None
+
+    def residual(th: np.ndarray) -> np.ndarray:
+        return model.static_rows(th, lam, lam_dot)
+
+    res = newton(residual, _BatchedDirections(model, lam, lam_dot), theta, rtol, maxiter,
+                 damped=False, axis=-1)  # fmt: skip
+    return res.x if res.converged else None
+
+
+class _BatchedDirections:
+    """The Newton steps of `batched_static`: each instant's own Jacobian, inverted at once;
+    kept (chord Newton) while every angle stays below CHORD_MAX_ANGLE, fresh at every step
+    above."""
+
+    def __init__(self, model: DiscreteModel, lam: np.ndarray, lam_dot: np.ndarray) -> None:
+        self.model, self.lam, self.lam_dot = model, lam, lam_dot
+        self.inverse = None
+
+    def __call__(self, theta: np.ndarray, r: np.ndarray) -> np.ndarray:
+        if self.inverse is None or float(np.max(np.abs(theta))) > CHORD_MAX_ANGLE:
+            J = self.model.static_rows(theta, self.lam, self.lam_dot, jacobian=True)[1]
+            self.inverse = np.linalg.inv(J)
+        return -matvec_rows(self.inverse, r)
 
 
 def quasistatic_series(model: DiscreteModel, taus: np.ndarray, rtol: float = 1e-11) -> np.ndarray:
