@@ -26,7 +26,8 @@ from ..model.params import Drive
 from ..runs.response import RTOL, SAMPLES, _atol
 from ..runs.scene import Scene
 from ..solve import stepping
-from ..solve.lyapunov import IvpInterval, tangent_system
+from ..solve.ivp import IvpInterval
+from ..solve.lyapunov import tangent_system
 from ..solve.steady import initial_state
 from ..solve.system import FirstOrderSystem
 
@@ -177,7 +178,7 @@ def radau_profile(N: int) -> dict[str, float]:
     step = IvpInterval(aug, "Radau", RTOL, tangent_atol, aug_jac)
     seconds = one_period(_Tangent(step), z, model.dl.period, True)
     (nr, tr), (nj, tj) = spent["rhs"], spent["jac"]
-    return {"N": N, "seconds": seconds, "steps": step.steps, "rhs_calls": nr, "jac_calls": nj,
+    return {"N": N, "seconds": seconds, "steps": step.last.steps, "rhs_calls": nr, "jac_calls": nj,
             "rhs_us": 1e6 * tr / nr, "jac_us": 1e6 * tj / nj,
             "share": (tr + tj) / seconds}  # fmt: skip
 

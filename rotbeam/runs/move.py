@@ -20,8 +20,9 @@ from ..config.errors import RotbeamInputError
 from ..config.threads import one_blas_thread
 from ..model.criterion import delta_rms, rms
 from ..model.modes import resonance_frequency_hz
+from ..solve.ivp import CUT, FAILED, IvpInterval
 from ..solve.quasistatic import QuasiStaticError, quasistatic_series, solve_static
-from ..solve.system import FirstOrderSystem, OutOfTime
+from ..solve.system import FirstOrderSystem
 from .observables import OBSERVABLES, States, compare, observable_names, still
 from .scene import Scene, folded, model_name
 
@@ -293,7 +294,8 @@ def _reporter(progress, scene: Scene, law, f1_end: float) -> Callable[[float], N
 
 
 class _Stepper:
-    """Radau over consecutive windows, keeping the samples and the state at each window's end."""
+    """Radau over consecutive windows (`rotbeam.solve.ivp.IvpInterval`), keeping the samples and
+    the state at each window's end."""
 
     def __init__(
         self,
@@ -303,37 +305,37 @@ class _Stepper:
         rate: float,
         report: Callable[[float], None] | None = None,
     ) -> None:
-        self.system, self.rtol, self.report = system, rtol, report
+        self.system, self.report = system, report
         n = system.n
         a = 1e-3 * rtol * scale  # the angles' scale is the quasi-static response's, the rates'
-        self.atol = np.concatenate([np.full(n, a), np.full(n, a * rate)])  # times w1
+        atol = np.concatenate([np.full(n, a), np.full(n, a * rate)])  # times w1
+        self.ivp = IvpInterval(system.rhs, "Radau", rtol, atol, system.jac)
         self.times: list[float] = []
         self.samples: list[np.ndarray] = []
         self.rates: list[np.ndarray] = []
         self.z: np.ndarray | None = None
         self.tau = 0.0
-        self.nfev = 0
         self.ok = True
+
+    @property
+    def nfev(self) -> int:
+        """Right-hand-side evaluations of every window so far."""
+        return self.ivp.nfev
 
     def through(self, z: np.ndarray, t_eval: np.ndarray, t_end: float) -> tuple[bool, str]:
         """From state z at self.tau to t_end, sampled at t_eval (those before t_end)."""
-        from scipy.integrate import solve_ivp
-
-        s = self.system
+        n = self.system.n
         t_eval = t_eval[(t_eval >= self.tau) & (t_eval < t_end)]
-        try:
-            sol = solve_ivp(s.rhs, (self.tau, t_end), z, method="Radau", rtol=self.rtol,
-                            atol=self.atol, jac=s.jac, t_eval=np.append(t_eval, t_end))  # fmt: skip
-        except OutOfTime:
+        sol = self.ivp.run(self.tau, t_end, z, np.append(t_eval, t_end))
+        if sol.status == CUT:
             self.ok = False
             return False, f"cut by the time budget at t = {self.tau:.4g} T"
-        if sol.status < 0 or not np.all(np.isfinite(sol.y)):
+        if sol.status == FAILED:
             self.ok = False
             return False, f"integrator failed at t = {self.tau:.4g} T: {sol.message}"
-        self.nfev += sol.nfev
         self.times += list(sol.t[:-1])
-        self.samples += list(sol.y[: s.n, :-1].T)
-        self.rates += list(sol.y[s.n :, :-1].T)
+        self.samples += list(sol.y[:n, :-1].T)
+        self.rates += list(sol.y[n:, :-1].T)
         self.z, self.tau = sol.y[:, -1], t_end
         if self.report is not None:
             self.report(t_end)

@@ -16,6 +16,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .ivp import IvpInterval
+
 
 @dataclass
 class LyapunovResult:
@@ -62,9 +64,9 @@ def largest_lyapunov(
     """Benettin's estimate of the largest Lyapunov exponent of z' = f(t, z) from z0 at t0.
 
     The state and one tangent vector are integrated together (`tangent_system`), one
-    `solve_ivp` per interval; after each interval the tangent is renormalised and its log
-    growth kept.  Never raises for a solver failure: the result's message says where it
-    stopped.
+    `rotbeam.solve.ivp.IvpInterval` call per interval; after each interval the tangent is
+    renormalised and its log growth kept.  Never raises for a solver failure: the result's
+    message says where it stopped.
 
     Parameters
     ----------
@@ -81,7 +83,8 @@ def largest_lyapunov(
     t0 : float
         Time at z0.
     method : str
-        `solve_ivp` method; Radau, BDF and LSODA get the Jacobian of the augmented system.
+        The scipy solver (`IvpInterval`); Radau, BDF and LSODA get the Jacobian of the
+        augmented system.
     rtol : float
         Relative tolerance of the stepper.
     atol : float or numpy.ndarray
@@ -98,8 +101,8 @@ def largest_lyapunov(
     stepper : callable or None
         What integrates the state and the tangent over one interval (`IntervalStep`), e.g.
         a `rotbeam.solve.stepping.PeriodStepper`'s `tangent`; it then replaces `rhs`, `jac`,
-        `method`, `rtol` and `atol`.  None: `solve_ivp` with `method`
-        on `tangent_system`.
+        `method`, `rtol` and `atol`.  None: an `IvpInterval` with `method` on
+        `tangent_system`.
 
     Returns
     -------
@@ -144,53 +147,6 @@ def largest_lyapunov(
             msg = f"stopped by the time budget after {k + 1} of {intervals} intervals"
             break
     return benettin_result(logs, interval, section, samples, time.perf_counter() - start, msg)
-
-
-class IvpInterval:
-    """One `solve_ivp` per interval, as an `IntervalStep`; samples at t_eval come from its
-    dense output, so that the steps it took are known (`steps`).
-
-    Parameters
-    ----------
-    fun : callable
-        fun(t, y) -> y', shape (dim,).
-    method : str
-        The `solve_ivp` method.
-    rtol : float
-        Relative tolerance.
-    atol : numpy.ndarray
-        Absolute tolerances, shape (dim,).
-    jac : callable or None
-        The Jacobian of `fun` (implicit methods).
-
-    Attributes
-    ----------
-    steps : int
-        Steps of the last call.
-    """
-
-    def __init__(
-        self, fun: Callable, method: str, rtol: float, atol: np.ndarray, jac: Callable | None = None
-    ) -> None:
-        self.fun, self.method, self.rtol, self.atol = fun, method, rtol, atol
-        self.kwargs = {} if jac is None else {"jac": jac}
-        self.steps = 0
-
-    def __call__(
-        self, ta: float, tb: float, y: np.ndarray, t_eval: np.ndarray | None
-    ) -> tuple[np.ndarray, np.ndarray | None, str]:
-        """y at tb, the state y[:dim // 2] at t_eval[:-1] (or None) and '' unless solve_ivp
-        failed (then its message)."""
-        from scipy.integrate import solve_ivp  # here: only a time-stepped run needs it
-
-        sol = solve_ivp(self.fun, (ta, tb), y, method=self.method, rtol=self.rtol,
-                        atol=self.atol, dense_output=t_eval is not None,
-                        **self.kwargs)  # fmt: skip
-        self.steps = sol.t.size - 1
-        if sol.status < 0:
-            return sol.y[:, -1], None, sol.message
-        samples = None if t_eval is None else sol.sol(t_eval[:-1])[: y.size // 2]
-        return sol.y[:, -1], samples, ""
 
 
 def tangent_system(rhs: Callable, jac: Callable, d: int) -> tuple[Callable, Callable]:

@@ -22,6 +22,7 @@ from ..model.base import DiscreteModel
 from ..model.modes import linear_forced_response
 from ..model.params import Dimensionless
 from .floquet import STEP_LADDER, FloquetResult
+from .ivp import CUT, FAILED, IvpInterval, Stepped
 from .numerics import Numerics
 from .periodic import Neighbour, PeriodicResult, as_neighbour, refined, solve_periodic_adaptive
 from .quasistatic import quasistatic_series
@@ -471,9 +472,10 @@ def tolerances(
 
 
 class TransientStepper:
-    """One `solve_ivp` over whole drive periods, within the wall-time budget, sampled `samples`
-    times a period (`window_samples`); counts the right-hand side and Jacobian evaluations over
-    all its calls (`nfev`, `njev`)."""
+    """The march's time stepper: whole drive periods a call of one `IvpInterval`
+    (`rotbeam.solve.ivp`), within the wall-time budget, sampled `samples` times a period
+    (`window_samples`); counts the right-hand side and Jacobian evaluations over all its calls
+    (`nfev`, `njev`)."""
 
     def __init__(
         self,
@@ -486,18 +488,28 @@ class TransientStepper:
         self.model, self.dl, self.num, self.tol = model, model.dl, num, tol
         self.n, self.time_budget, self.samples = model.n, time_budget, samples
         system = FirstOrderSystem(model, time_budget.deadline)
-        self.rhs = system.rhs
-        self.jac = system.jac if num.jacobian == "exact" else None
+        method: str | type = num.method
         if num.method == "TRBDF2":
             from .trbdf2 import TRBDF2
 
-            self.method: str | type = TRBDF2
-        else:
-            self.method = num.method
-        self.nfev = self.njev = 0
+            method = TRBDF2
+        jac = system.jac if num.jacobian == "exact" else None
+        self.ivp = IvpInterval(system.rhs, method, tol.rtol, tol.atol(tol.rtol, self.n), jac)
 
-    def periods(self, k: int, count: int, z: np.ndarray, t_eval: np.ndarray, rtol: float):
-        """`solve_ivp` over whole drive periods.
+    @property
+    def nfev(self) -> int:
+        """Right-hand-side evaluations over all calls."""
+        return self.ivp.nfev
+
+    @property
+    def njev(self) -> int:
+        """Jacobian evaluations over all calls."""
+        return self.ivp.njev
+
+    def periods(
+        self, k: int, count: int, z: np.ndarray, t_eval: np.ndarray, rtol: float
+    ) -> Stepped:
+        """Whole drive periods from tau = k P.
 
         Parameters
         ----------
@@ -508,29 +520,17 @@ class TransientStepper:
         z : numpy.ndarray
             State at tau = k P, shape (2 n,).
         t_eval : numpy.ndarray
-            Instants to report.
+            Instants to sample.
         rtol : float
             Relative tolerance (the absolute one from `Tolerances.atol`).
 
         Returns
         -------
-        scipy.integrate OdeResult or None
-            solve_ivp's result; None when the wall-time budget ran out inside it.
+        Stepped
+            The samples and the status: CUT when the wall-time budget ran out inside it.
         """
-        # imported here: a job whose orbits are all certified never steps (0.2 s of start-up)
-        from scipy.integrate import solve_ivp
-
         P = self.dl.period
-        try:
-            sol = solve_ivp(
-                self.rhs, (k * P, (k + count) * P), z, method=self.method, rtol=rtol,
-                atol=self.tol.atol(rtol, self.n), jac=self.jac, t_eval=t_eval,
-            )  # fmt: skip
-        except OutOfTime:
-            return None
-        self.nfev += sol.nfev
-        self.njev += sol.njev
-        return sol
+        return self.ivp.run(k * P, (k + count) * P, z, t_eval, rtol, self.tol.atol(rtol, self.n))
 
 
 def _out_of_time(stepper: TransientStepper, k: int, bound: float) -> str:
@@ -650,10 +650,10 @@ def march(
         k = out.k
         t_eval = np.append(period_samples(dl, k, 1, m), (k + 1) * P)
         sol = stepper.periods(k, 1, out.z, t_eval, tol.rtol_first if k == 0 else tol.rtol)
-        if sol is None:
+        if sol.status == CUT:
             out.message = _out_of_time(stepper, k, out.bound)
             return out
-        if sol.status < 0 or not np.all(np.isfinite(sol.y)):
+        if sol.status == FAILED:
             out.status, out.message = -1, f"integrator failed in period {k + 1}: {sol.message}"
             return out
         out.last = (sol.t[:-1], sol.y[:n, :-1])
@@ -748,10 +748,10 @@ def rms_window(
         )
     taus = period_samples(dl, k, p, m)
     sol = stepper.periods(k, p, run.z, taus, stepper.tol.rtol)
-    if sol is None:
+    if sol.status == CUT:
         msg = _out_of_time(stepper, k, run.bound) + " (in the RMS window)"
         return Window(*run.last, 1, msg, k, m)
-    if sol.status < 0 or sol.y.shape[1] != taus.size or not np.all(np.isfinite(sol.y)):
+    if sol.status == FAILED:
         return Window(*run.last, -1, f"integrator failed in the RMS window: {sol.message}", k, m)
     return Window(taus, sol.y[:n], 0, run.message, k + p, m)
 

@@ -18,7 +18,8 @@ from abc import ABC, abstractmethod
 import numpy as np
 
 from ..model.base import DiscreteModel, Kernel
-from .lyapunov import IvpInterval, tangent_system
+from .ivp import IvpInterval
+from .lyapunov import tangent_system
 from .system import FirstOrderSystem
 
 METHODS = ("auto", "radau", "dop853")
@@ -111,13 +112,13 @@ class _IvpStepper(PeriodStepper):
     def state(self, ta: float, tb: float, z: np.ndarray) -> tuple[np.ndarray, str]:
         """z at tb from z at ta (`PeriodStepper.state`)."""
         y, _, msg = self._state(ta, tb, z, None)
-        self.steps = self._state.steps
+        self.steps = self._state.last.steps
         return y, msg
 
     def tangent(self, ta, tb, y, t_eval):
         """(z, v) at tb and the samples (`PeriodStepper.tangent`)."""
         out = self._tangent(ta, tb, y, t_eval)
-        self.steps = self._tangent.steps
+        self.steps = self._tangent.last.steps
         return out
 
 
