@@ -303,9 +303,27 @@ class DiscreteModel(ABC):
             dR/d(lam_dot) at Theta = 0, shape (n,): the load per unit angular acceleration
             (zero with the Euler load off).
         """
+        stiffness, _, mass = self.straight_blocks(lam)
+        return mass, stiffness, self.euler_load_vector()
+
+    def straight_blocks(self, lam: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """The residual's blocks on the straight beam at rest turning steadily at `lam`, from
+        one evaluation: the linearised stiffness, damping and mass.
+
+        Parameters
+        ----------
+        lam : float
+            Omega T, dimensionless.
+
+        Returns
+        -------
+        stiffness, damping, mass : numpy.ndarray
+            dR/dTheta, dR/dTheta_t and dR/dTheta_tt at Theta = 0 (lam_dot = 0), shape (n, n)
+            each.
+        """
         zero = np.zeros((1, self.n))
-        dq, _, mass = self.residual_rows(zero, zero, zero, [lam], [0.0], True).blocks()
-        return mass[0], dq[0], self.euler_load_vector()
+        dq, dqt, mass = self.residual_rows(zero, zero, zero, [lam], [0.0], True).blocks()
+        return dq[0], dqt[0], mass[0]
 
     def euler_load_vector(self) -> np.ndarray:
         """The load per unit angular acceleration on the straight beam, dR/d(lam_dot) at Theta = 0.
@@ -334,8 +352,7 @@ class DiscreteModel(ABC):
         numpy.ndarray
             Shape (n, n) (zero without damping).
         """
-        zero = np.zeros((1, self.n))
-        return self.residual_rows(zero, zero, zero, [lam], [0.0], True).blocks()[1][0]
+        return self.straight_blocks(lam)[1]
 
     def first_mode_decay(self, lam: float) -> tuple[float, float]:
         """The first mode of the straight beam turning at `lam` and its modal damping.
@@ -356,8 +373,7 @@ class DiscreteModel(ABC):
         c : float
             The modal damping coefficient, in units of 1/T (0 without damping).
         """
-        mass, stiffness, _ = self.linear_operators(lam)
-        damping = self.linear_damping(lam)
+        stiffness, damping, mass = self.straight_blocks(lam)
         w2, left, right = eig(stiffness, mass, left=True, right=True)
         k = int(np.argmin(np.real(w2)))
         phi, psi = right[:, k], left[:, k].conj()
@@ -458,6 +474,17 @@ class Residual(ABC):
             Accelerations (1/T^2), shape (m, n).
         """
 
+    def keep_lu(self, keep: bool) -> None:
+        """At one instant, factor the mass matrix once for `mass_solve` (a tangent's solve).
+
+        Parameters
+        ----------
+        keep : bool
+            Whether to keep the LU (rows of more than one instant keep none).
+        """
+        if keep and self.R.shape[0] == 1:
+            self._lu = lu_factor(self.mass()[0], check_finite=False)
+
     def mass_solve(self, rhs: np.ndarray) -> np.ndarray:
         """M^-1 rhs at each instant (by the LU `solved(keep_lu=True)` kept, if any).
 
@@ -492,8 +519,7 @@ class Residual(ABC):
         numpy.ndarray
             Theta_tt (units of 1/T^2), shape (m, n).
         """
-        if keep_lu and self.R.shape[0] == 1:
-            self._lu = lu_factor(self.mass()[0], check_finite=False)
+        self.keep_lu(keep_lu)
         acc = -self.mass_solve(self.R)
         self.accelerate(acc)
         return acc

@@ -317,28 +317,14 @@ class DiscreteElastica(GyroscopicModel):
         g = self.grid
         x = g.x0 + g.P @ c
         y = g.P @ s
-        fx = np.zeros_like(x)
-        fy = np.zeros_like(y)
-        for part in self.parts:
-            px, py = part.forces(self, x, y, lam, lam_dot)
-            if px is not None:
-                fx = fx + px
-            if py is not None:
-                fy = fy + py
-        return fx, fy
+        pairs = (part.forces(self, x, y, lam, lam_dot) for part in self.parts)
+        return _summed(pairs, np.zeros_like(x), np.zeros_like(y))
 
     def _slopes(self, c, s, lam, lam_dot):
         """a, b of the summed forces' slopes, d(F_x)/dTheta = P diag(a) and
         d(F_y)/dTheta = P diag(b), shape (m, n) each."""
-        a = np.zeros_like(c)
-        b = np.zeros_like(c)
-        for part in self.parts:
-            pa, pb = part.slopes(self, c, s, lam, lam_dot)
-            if pa is not None:
-                a = a + pa
-            if pb is not None:
-                b = b + pb
-        return a, b
+        pairs = (part.slopes(self, c, s, lam, lam_dot) for part in self.parts)
+        return _summed(pairs, np.zeros_like(c), np.zeros_like(c))
 
     def load_torque_rows(
         self, theta: np.ndarray, lam: np.ndarray, lam_dot: np.ndarray, jacobian: bool = False
@@ -432,3 +418,14 @@ class DiscreteElastica(GyroscopicModel):
             nx[-1] -= 0.5 * self.dl.tip_mass * gx[-1]
             ny[-1] -= 0.5 * self.dl.tip_mass * gy[-1]
         return nx, ny
+
+
+def _summed(pairs, a: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """a + the sum of the pairs' first parts, b + the sum of their second, in order (a part's
+    None adds nothing)."""
+    for pa, pb in pairs:
+        if pa is not None:
+            a = a + pa
+        if pb is not None:
+            b = b + pb
+    return a, b

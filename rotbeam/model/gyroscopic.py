@@ -9,7 +9,6 @@ from __future__ import annotations
 from abc import abstractmethod
 
 import numpy as np
-from scipy.linalg import lu_factor
 
 from .base import DiscreteModel, Residual
 from .rows import matvec_rows
@@ -321,7 +320,7 @@ class ResidualRows(Residual):
         #: (the rate-dependent loads with their blocks,) once evaluated with them
         #: (`GyroscopicModel.rate_load_rows`); None: not yet
         self.rate = rate
-        self._lu = None  #: the LU of the one mass matrix, once `mass_solve` has made it
+        self._lu = None  #: the LU of the one mass matrix, once `keep_lu` has made it
 
     def mass(self) -> np.ndarray:
         """M at each instant (`Residual.mass`).
@@ -348,7 +347,7 @@ class ResidualRows(Residual):
 
     def apply(self, p: np.ndarray, q: np.ndarray) -> np.ndarray:
         """dR/dTheta p + dR/dTheta_t q at each instant without forming the blocks (the
-        identities of `DiscreteModel.inertia_rows`; exact for S = B).
+        identities of `GyroscopicModel.inertia_rows`; exact for S = B).
 
         Parameters
         ----------
@@ -408,8 +407,7 @@ class ResidualRows(Residual):
         numpy.ndarray
             Theta_tt (units of 1/T^2), shape (m, n).
         """
-        if keep_lu and self.Mm.shape[0] == 1:
-            self._lu = lu_factor(self.Mm[0], check_finite=False)
+        self.keep_lu(keep_lu)
         self.a = -self.mass_solve(self.R)  # Theta_tt (+ eta Theta_t where the damping is eta M)
         self.R = np.zeros_like(self.R)
         if self.damp is None:
@@ -418,7 +416,7 @@ class ResidualRows(Residual):
 
     def blocks(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """dR/dTheta, dR/dTheta_t and dR/dTheta_tt = M at each instant (exact for S = B: the
-        identities of `DiscreteModel.inertia_rows` and the loads' own Jacobian).
+        identities of `GyroscopicModel.inertia_rows` and the loads' own Jacobian).
 
         Returns
         -------

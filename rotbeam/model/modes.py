@@ -199,8 +199,8 @@ def linear_forced_response(model: DiscreteModel, K: int = 8) -> dict[int, np.nda
     """
     dl = model.dl
     lam = dl.lam0  # without the centrifugal load the stiffness does not depend on it
-    mass, stiffness, q = model.linear_operators(lam)
-    damping = model.linear_damping(lam)
+    stiffness, damping, mass = model.straight_blocks(lam)
+    q = model.euler_load_vector()
     w = dl.omega
     c = dl.law.coefficients(K)
     out = {}
