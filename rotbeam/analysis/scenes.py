@@ -22,8 +22,8 @@ from ..runs.scene import Scene, build_scene, model_name, simulate
 from .verdict import judge, judge_move
 
 #: the table's columns, a scene a row
-COLUMNS = ["scene", "drive", "tip_mass_kg", "N", "rms_dynamic", "rms_quasistatic", "delta_rms",
-           "quasistatic_ok", "f0_hz", "peak_ym", "peak_ym_quasistatic", "residual_ym",
+COLUMNS = ["scene", "drive", "tip_mass_kg", "N", "model", "rms_dynamic", "rms_quasistatic",
+           "delta_rms", "quasistatic_ok", "f0_hz", "peak_ym", "peak_ym_quasistatic", "residual_ym",
            "settling_time_s", "converged", "seconds", "verdict"]  # fmt: skip
 
 #: an observable's numbers in the table: the key of its `observables` entry and whether the
