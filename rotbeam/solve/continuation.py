@@ -16,9 +16,10 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.linalg as sla
 
+from ..model.base import Residual
 from .floquet import FloquetResult, orbit_floquet
 from .newton import newton as solve_newton
-from .spectral import fourier_diff_matrix
+from .periodic import SpectralCollocation
 
 
 class BranchProblem:
@@ -96,9 +97,54 @@ class BranchProblem:
         return (self.residual(x, p + h) - self.residual(x, p - h)) / (2.0 * h)
 
 
+class FirstOrderRows(Residual):
+    """The rows R_j = z'_j - f(t_j, z_j; p) of a first-order system at the instants t_j, as a
+    second-order residual with no mass: dR/dz = -J_j, dR/dz' = I, dR/dz'' = 0."""
+
+    def __init__(self, problem: FirstOrderProblem, t: np.ndarray, Z: np.ndarray, Z_t: np.ndarray,
+                 p: float) -> None:  # fmt: skip
+        self.problem, self.t, self.Z, self.p = problem, t, Z, p
+        F = np.array([problem.rhs(tj, zj, p) for tj, zj in zip(t, Z, strict=True)])
+        self.R = Z_t - F
+
+    def mass(self) -> np.ndarray:
+        """dR/dz'' = 0 at each instant.
+
+        Returns
+        -------
+        numpy.ndarray
+            Zeros, shape (M, dim, dim).
+        """
+        m, dim = self.Z.shape
+        return np.zeros((m, dim, dim))
+
+    def blocks(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """dR/dz = -J_j, dR/dz' = I and dR/dz'' = 0 at each instant.
+
+        Returns
+        -------
+        dR_dz, dR_dz_t, mass : numpy.ndarray
+            Shape (M, dim, dim) each.
+        """
+        pr = self.problem
+        J = np.array([pr.jac(tj, zj, self.p) for tj, zj in zip(self.t, self.Z, strict=True)])
+        m, dim = self.Z.shape
+        return -J, np.broadcast_to(np.eye(dim), (m, dim, dim)), self.mass()
+
+    def accelerate(self, theta_tt: np.ndarray) -> None:
+        """Nothing moves: a first-order residual does not depend on z''.
+
+        Parameters
+        ----------
+        theta_tt : numpy.ndarray
+            Second derivatives, shape (M, dim) (unused).
+        """
+
+
 class FirstOrderProblem(BranchProblem):
     """Trigonometric collocation of z' = f(t, z; p) on M instants of the period P(p):
-    R = D Z - f(t_j, Z_j; p), with dR/dZ = D (x) I - blockdiag(J_j).
+    R = D Z - f(t_j, Z_j; p), with dR/dZ = D (x) I - blockdiag(J_j) (`SpectralCollocation`
+    of `FirstOrderRows`).
 
     The unknowns x are Z, the states at t_j = j P(p) / M, shape (M, dim), flattened.
 
@@ -125,11 +171,24 @@ class FirstOrderProblem(BranchProblem):
         M: int = 33,
     ) -> None:
         self.rhs, self.jac, self.period, self.dim, self.M = rhs, jac, period, dim, M
-        self.D1 = fourier_diff_matrix(M, 1.0)  # for a unit period; scaled by 1 / P(p)
 
-    def _grid(self, p: float):
+    def collocation(self, p: float) -> SpectralCollocation:
+        """The collocation problem at the parameter p (its period P(p)).
+
+        Parameters
+        ----------
+        p : float
+            The parameter.
+
+        Returns
+        -------
+        SpectralCollocation
+            Of the rows `FirstOrderRows` at M instants of P(p).
+        """
         P = self.period(p)
-        return np.arange(self.M) * P / self.M, self.D1 / P
+        tau = np.arange(self.M) * P / self.M
+        return SpectralCollocation(lambda Z, Z_t, _: FirstOrderRows(self, tau, Z, Z_t, p), P,
+                                   self.M)  # fmt: skip
 
     def residual(self, x: np.ndarray, p: float) -> np.ndarray:
         """The collocation residual D Z - f(t_j, Z_j; p).
@@ -146,10 +205,7 @@ class FirstOrderProblem(BranchProblem):
         numpy.ndarray
             R, shape (M dim,).
         """
-        t, D = self._grid(p)
-        Z = x.reshape(self.M, self.dim)
-        F = np.array([self.rhs(tj, zj, p) for tj, zj in zip(t, Z, strict=True)])
-        return (D @ Z - F).ravel()
+        return self.collocation(p).residual(x.reshape(self.M, self.dim)).ravel()
 
     def jacobian(self, x: np.ndarray, p: float) -> np.ndarray:
         """dR/dZ = D (x) I - blockdiag(J_j), dense.
@@ -166,13 +222,8 @@ class FirstOrderProblem(BranchProblem):
         numpy.ndarray
             Shape (M dim, M dim).
         """
-        t, D = self._grid(p)
-        Z = x.reshape(self.M, self.dim)
-        J = np.kron(D, np.eye(self.dim))
-        for j, (tj, zj) in enumerate(zip(t, Z, strict=True)):
-            s = slice(j * self.dim, (j + 1) * self.dim)
-            J[s, s] -= self.jac(tj, zj, p)
-        return J
+        col = self.collocation(p)
+        return col.dense_jacobian(col.jacobian_blocks(x.reshape(self.M, self.dim)))
 
     def floquet(self, x: np.ndarray, p: float) -> FloquetResult:
         """The Floquet multipliers of the orbit Z (`rotbeam.solve.floquet.orbit_floquet`).
@@ -210,7 +261,7 @@ class FirstOrderProblem(BranchProblem):
         numpy.ndarray
             x, shape (M dim,).
         """
-        t, _ = self._grid(p)
+        t = np.arange(self.M) * self.period(p) / self.M
         return np.asarray(z0_of_t(t)).reshape(self.M, self.dim).ravel()
 
 

@@ -11,12 +11,13 @@ the solver: docs/numerics.md, "Trigonometric collocation".
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, replace
 
 import numpy as np
 import scipy.linalg as sla
 
-from ..model.base import DiscreteModel
+from ..model.base import DiscreteModel, Residual
 from ..model.modes import linear_forced_response
 from ..model.rows import matvec_rows
 from .newton import newton
@@ -40,34 +41,48 @@ class PeriodicResult:
     krylov_iterations: int = 0  #: GMRES iterations in all Newton steps (0: dense solves)
 
 
-class Collocation:
-    """Residual and Jacobian of the collocated periodic problem for one scene and grid.
+class SpectralCollocation:
+    """Residual and Jacobian of a periodic problem R(X, D X, D^2 X) = 0 collocated at M
+    equally spaced instants of its period: the one harmonic balance of the package.
+
+    D is the Fourier differentiation matrix of the period, exact on the M-point trigonometric
+    polynomials; the rows R and their blocks (dR/dX, dR/dX_t, dR/dX_tt) at the instants come
+    from `rows`, a second-order residual over a batch of instants (`rotbeam.model.base.Residual`:
+    a first-order system is one with dR/dX_tt = 0).  `Collocation` is this for a model's
+    equation of motion under its drive; `rotbeam.solve.continuation.FirstOrderProblem` for
+    z' = f(t, z; p).
 
     Parameters
     ----------
-    model : DiscreteModel
-        The model and its drive (period `dl.period`, dimensionless).
+    rows : callable
+        rows(X, X_t, X_tt) -> Residual at the instants, each argument of shape (M, n).
+    period : float
+        The period (the time unit of the rows).
     M : int
-        Collocation instants tau_j = j P / M (odd).
+        Collocation instants tau_j = j period / M (odd).
     """
 
-    def __init__(self, model: DiscreteModel, M: int) -> None:
-        self.model = model
-        self.dl = dl = model.dl
+    def __init__(
+        self,
+        rows: Callable[[np.ndarray, np.ndarray, np.ndarray], Residual],
+        period: float,
+        M: int,
+    ) -> None:
+        self.rows_at = rows
+        self.period = period
         self.M = M
-        self.tau = np.arange(M) * dl.period / M
-        self.D = fourier_diff_matrix(M, dl.period)
+        self.tau = np.arange(M) * period / M
+        self.D = fourier_diff_matrix(M, period)
         self.D2 = self.D @ self.D
-        self.lam, self.lam_dot = model.drive_rows(self.tau)
         self._cache: tuple | None = None
 
-    def _rows(self, X: np.ndarray):
-        """The model's residual rows at the instants (`DiscreteModel.residual_rows`, with the
-        rates and accelerations by the Fourier differentiation matrix); cached for the last X,
-        which the residual and the Jacobian share."""
+    def _rows(self, X: np.ndarray) -> Residual:
+        """The residual rows at the instants, with the rates and accelerations by the Fourier
+        differentiation matrix; cached for the last X, which the residual and the Jacobian
+        share."""
         if self._cache is not None and self._cache[0] is X:
             return self._cache[1]
-        rows = self.model.residual_rows(X, self.D @ X, self.D2 @ X, self.lam, self.lam_dot)
+        rows = self.rows_at(X, self.D @ X, self.D2 @ X)
         self._cache = (X, rows)
         return rows
 
@@ -120,7 +135,7 @@ class Collocation:
             Shape (M n, M n), unknowns ordered instant by instant.
         """
         Lj, Cj, Mm = blocks
-        M, n = self.M, self.model.n
+        M, n = self.M, Lj.shape[-1]
         J = self.D2[:, None, :, None] * Mm[:, :, None, :]
         J = J + self.D[:, None, :, None] * Cj[:, :, None, :]
         for j in range(M):
@@ -166,7 +181,7 @@ class Collocation:
         """
         Lb, Cb, Mb = (b.mean(axis=0) for b in blocks)
         M = self.M
-        w = 2.0 * math.pi * np.arange(M // 2 + 1) / self.dl.period
+        w = 2.0 * math.pi * np.arange(M // 2 + 1) / self.period
         blocks_k = Lb[None] + 1j * w[:, None, None] * Cb[None] - (w * w)[:, None, None] * Mb[None]
         inv = np.linalg.inv(blocks_k)  # one batched call; a preconditioner needs no pivoted LU
 
@@ -175,6 +190,28 @@ class Collocation:
             return np.fft.irfft(matvec_rows(inv, F), n=M, axis=0)
 
         return solve
+
+
+class Collocation(SpectralCollocation):
+    """The collocated periodic problem of one model under its drive: its residual rows
+    (`DiscreteModel.residual_rows`) at M instants of the drive period.
+
+    Parameters
+    ----------
+    model : DiscreteModel
+        The model and its drive (period `dl.period`, dimensionless).
+    M : int
+        Collocation instants tau_j = j P / M (odd).
+    """
+
+    def __init__(self, model: DiscreteModel, M: int) -> None:
+        self.model = model
+        self.dl = dl = model.dl
+        super().__init__(self._model_rows, dl.period, M)
+        self.lam, self.lam_dot = model.drive_rows(self.tau)
+
+    def _model_rows(self, X: np.ndarray, X_t: np.ndarray, X_tt: np.ndarray) -> Residual:
+        return self.model.residual_rows(X, X_t, X_tt, self.lam, self.lam_dot)
 
 
 @dataclass(frozen=True)
