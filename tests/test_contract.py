@@ -133,3 +133,27 @@ def test_linear_operators_are_the_residual_linearised_on_the_straight_beam(model
     _close(damping, _fd_columns(lambda x: R(zero, x, zero), zero)[0])
     _close(mass, _fd_columns(lambda x: R(zero, zero, x), zero)[0])
     _close(euler, (R(zero, zero, zero, 1e-3) - R(zero, zero, zero, -1e-3))[0] / 2e-3)
+
+
+@pytest.mark.parametrize("lam", [0.0, 0.7])
+def test_first_mode_decay_is_the_damped_eigenproblems_first_mode(model, lam):
+    """The first mode's frequency and modal damping (first order in the damping) against the
+    slowest pair s of the damped linear problem s^2 M + s C + K = 0, solved in companion form:
+    w1 = |s| and c = -2 Re s to second order in the damping; exactly for the bare beam, whose
+    damping is proportional to its mass (C = eta M, so c = eta)."""
+    w1, c = model.first_mode_decay(lam)
+    stiffness, damping, mass = model.straight_blocks(lam)
+    n = model.n
+    companion = np.block(
+        [
+            [np.zeros((n, n)), np.eye(n)],
+            [-np.linalg.solve(mass, stiffness), -np.linalg.solve(mass, damping)],
+        ]
+    )
+    s = np.linalg.eigvals(companion)
+    s = s[np.imag(s) > 0]
+    s1 = s[np.argmin(np.abs(s))]
+    assert abs(w1 - abs(s1)) <= 1e-5 * w1
+    assert abs(c + 2.0 * s1.real) <= 1e-4 * c
+    if np.allclose(damping, model.dl.eta * mass, rtol=0, atol=1e-12 * np.max(np.abs(mass))):
+        assert c == pytest.approx(model.dl.eta, rel=1e-10)
