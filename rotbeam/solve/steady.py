@@ -717,8 +717,8 @@ def steady_state(
             orbit = certify_orbit(model, num, periodic)
             continued_orbit = guess is not None and state0 is None and num.start == "periodic"
             if (
-                not orbit.decided
-                and continued_orbit
+                continued_orbit
+                and not orbit.decided
                 and orbit.periodic is not None
                 and orbit.periodic.converged
             ):
