@@ -1,24 +1,13 @@
 """Certification: the one place that decides whether an orbit is the steady state.
 
-`steady_state` (`rotbeam.solve.steady`) searches for the steady state and asks this module two
-questions; the answers carry the status, the message, the multipliers reported and the
-certificate decided by:
-
-* `certify_orbit` -> `OrbitVerdict`: is the collocated orbit the steady state without time
-  stepping?  Its candidate check (`orbit_stability`: stable or not), the monodromy certificate
-  (`monodromy_certificate`, more Floquet steps where it is ambiguous: `accept_certified`), the
-  refinement of the orbit while the certificate fails on its offset estimate
-  (`certify_refining`), and, with numerics.integrate = False, the verdict on the collocation as
-  it is.  An orbit it does not certify is left to time stepping: from the orbit when it is
-  stable, pushed off it along its most unstable direction when it is not
-  (`OrbitVerdict.march_start`, `leave_orbit`).
-* `certify_window` -> `WindowVerdict`: the verdict on a time-stepped window: the multipliers of
-  the orbit time stepping settled on (`window_stability`), STATUS_UNSTABLE for an unstable one.
-
-The multipliers reported with either are resolved to numerics.floquet_tol
-(`reported_multipliers`); `stability_note` gives the words the message gains.  The multipliers
-themselves come from `rotbeam.solve.floquet`.  The criteria and their derivations:
-docs/stability.md.
+`rotbeam.solve.steady` searches; it asks `certify_orbit` (-> `OrbitVerdict`: is the collocated
+orbit the steady state without time stepping?  the candidate check `orbit_stability`, the
+monodromy certificate `accept_certified`, the refinement `certify_refining`, the verdict with
+integrate = False `collocation_verdict`; where time stepping starts: `OrbitVerdict.march_start`,
+`leave_orbit`) and `certify_window` (-> `WindowVerdict`: the verdict on a time-stepped window,
+`window_stability`).  Each answer carries the status, the message (`stability_note`), the
+certificate and the multipliers reported (`reported_multipliers`), which come from
+`rotbeam.solve.floquet`.  What it decides and why: docs/stability.md.
 """
 
 from __future__ import annotations
