@@ -128,6 +128,16 @@ def steady(dl, num=None, **kwargs):
     return steady_state(DiscreteElastica(dl, num.N), num, **kwargs)
 
 
+def y_m(dl, state):
+    """The midspan deflection y_m / L at the samples of `steady`'s result (the elastica of scene
+    `dl` on the grid of its N - 1 angles): the output the runs evaluate on the states."""
+    import numpy as np
+
+    from rotbeam.model.elastica import DiscreteElastica
+
+    return np.atleast_1d(DiscreteElastica(dl, state.theta.shape[0] + 1).midspan(state.theta))
+
+
 def numerical_first_order_jacobian(model, theta, theta_t, lam: float, lam_dot: float):
     """Central differences (h = 1e-6) of the model's first-order right-hand side (Theta_t,
     acceleration) at the state (theta, theta_t): what `first_order_jacobian` must equal."""

@@ -2,7 +2,7 @@
 
 import numpy as np
 import pytest
-from conftest import steady
+from conftest import steady, y_m
 from scipy.integrate import solve_ivp
 
 from rotbeam.model.criterion import rms
@@ -70,7 +70,7 @@ def test_periodic_start_agrees_with_long_integration():
     b = steady(dl, Numerics(N=20, start="quasistatic", ss_tol=1e-5))
     assert a.converged and b.converged
     assert b.periods > 3 * a.periods  # the transient from rest is long
-    assert rms(a.y_m) == pytest.approx(rms(b.y_m), rel=2e-4)
+    assert rms(y_m(dl, a)) == pytest.approx(rms(y_m(dl, b)), rel=2e-4)
 
 
 def test_zero_amplitude_gives_zero_deflection():
@@ -105,7 +105,7 @@ def test_verified_orbit_is_reported_from_the_collocation():
     np.testing.assert_allclose(a.theta, samples, rtol=0, atol=1e-14)
     tight = steady(dl, Numerics(N=20, start="quasistatic", ss_tol=1e-6, rtol=1e-8))
     assert tight.converged
-    assert rms(a.y_m) == pytest.approx(rms(tight.y_m), rel=1e-5)
+    assert rms(y_m(dl, a)) == pytest.approx(rms(y_m(dl, tight)), rel=1e-5)
 
 
 @pytest.mark.slow
@@ -115,7 +115,7 @@ def test_verification_rejects_an_inaccurate_orbit(monkeypatch):
     until the certificate passes and lands on the resolved steady state, not on the coarse
     collocation; with no refinement allowed, the orbit fails the one-period check too and time
     stepping at the tight tolerance reaches the same state."""
-    import rotbeam.solve.steady as steady_module
+    import rotbeam.solve.certify as certify
 
     dl = dl_of(5.0, 7.0)
     coarse = steady(dl, Numerics(N=20, integrate=False, tail_tol=0.05))
@@ -124,16 +124,16 @@ def test_verification_rejects_an_inaccurate_orbit(monkeypatch):
     refined = steady(dl, num)
     assert refined.converged and refined.periods == 0 and refined.periodic.M > 17
     assert "certified by the monodromy" in refined.message
-    monkeypatch.setattr(steady_module, "REFINE_M_MAX", 17)
+    monkeypatch.setattr(certify, "REFINE_M_MAX", 17)
     checked = steady(dl, num)
     assert checked.converged and checked.periods > 1 and "verified" not in checked.message
     assert checked.message.startswith("not certified by the monodromy")  # nor by its monodromy
     ref = steady(dl, Numerics(N=20, tail_tol=1e-8, integrate=False))
     assert ref.periodic.harmonic_tail < 1e-6
-    err_coarse = abs(rms(coarse.y_m) - rms(ref.y_m)) / rms(ref.y_m)
+    err_coarse = abs(rms(y_m(dl, coarse)) - rms(y_m(dl, ref))) / rms(y_m(dl, ref))
     assert err_coarse > 5e-4  # the certificate had something to catch
     for state in (refined, checked):
-        assert abs(rms(state.y_m) - rms(ref.y_m)) / rms(ref.y_m) < 1e-4
+        assert abs(rms(y_m(dl, state)) - rms(y_m(dl, ref))) / rms(y_m(dl, ref)) < 1e-4
 
 
 def test_no_coarse_run_when_the_fine_grid_has_no_steady_state():

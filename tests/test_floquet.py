@@ -8,12 +8,13 @@ import math
 
 import numpy as np
 import pytest
-from conftest import steady
+from conftest import steady, y_m
 from scipy.integrate import solve_ivp
 
 from rotbeam.model.elastica import DiscreteElastica
 from rotbeam.model.modes import dimensionless_frequencies
 from rotbeam.model.params import Beam, Dimensionless, Drive, Effects
+from rotbeam.solve.certify import CERTIFICATE_SAFETY, accept_certified, monodromy_certificate
 from rotbeam.solve.continuation import FirstOrderProblem, continue_branch
 from rotbeam.solve.floquet import (
     FIRST_STEPS,
@@ -25,8 +26,6 @@ from rotbeam.solve.floquet import (
 )
 from rotbeam.solve.numerics import Numerics
 from rotbeam.solve.periodic import solve_periodic, solve_periodic_adaptive
-from rotbeam.solve.stability import CERTIFICATE_SAFETY, monodromy_certificate
-from rotbeam.solve.steady import accept_certified
 
 NO_EULER = Effects(centrifugal=True, softening=True, euler=False, damping=True)
 
@@ -251,7 +250,7 @@ def test_certified_orbit_is_the_time_verified_one_and_a_failed_certificate_time_
     period of time stepping: the same samples as when one period verifies it.  A certificate
     that fails (its safety factor made impossible) refines the orbit and hands it to the
     time-stepped check."""
-    import rotbeam.solve.stability as stability
+    import rotbeam.solve.certify as certify
 
     dl = Dimensionless.from_physical(Beam(), Drive(omega0=100.0, f_d=30.0), Effects())
     by_monodromy = steady(dl, Numerics(N=12))
@@ -259,16 +258,16 @@ def test_certified_orbit_is_the_time_verified_one_and_a_failed_certificate_time_
     assert by_monodromy.converged and by_time.converged
     assert "certified by the monodromy" in by_monodromy.message and by_monodromy.periods == 0
     assert "verified by one period" in by_time.message and by_time.periods == 1
-    np.testing.assert_array_equal(by_monodromy.y_m, by_time.y_m)
-    monkeypatch.setattr(stability, "CERTIFICATE_SAFETY", 1e12)
+    np.testing.assert_array_equal(y_m(dl, by_monodromy), y_m(dl, by_time))
+    monkeypatch.setattr(certify, "CERTIFICATE_SAFETY", 1e12)
     refused = steady(dl, Numerics(N=12))
     assert refused.converged and refused.periods >= 1
     assert refused.message.startswith("not certified by the monodromy")
     # refined first (M -> 2M - 1 while the offset halves), then verified: the same periodic
     # state as the M = 17 orbit's, sampled by a finer collocation (measured 1.6e-11)
     assert refused.periodic.M > by_time.periodic.M
-    scale = np.max(np.abs(by_time.y_m))
-    assert np.max(np.abs(refused.y_m - by_time.y_m)) <= 1e-9 * scale
+    scale = np.max(np.abs(y_m(dl, by_time)))
+    assert np.max(np.abs(y_m(dl, refused) - y_m(dl, by_time))) <= 1e-9 * scale
 
 
 # --- the step count: a first try with its own error estimate ------------------------------------
@@ -347,7 +346,7 @@ def test_floquet_tol_sets_how_far_the_reported_multipliers_are_resolved(integrat
     assert loose.floquet.steps == FIRST_STEPS < fine.floquet.steps
     assert abs(loose.floquet.max_abs - converged.max_abs) <= 0.1 * (1.0 - converged.max_abs)
     assert loose.floquet.stable == fine.floquet.stable == converged.stable
-    np.testing.assert_array_equal(loose.y_m, fine.y_m)
+    np.testing.assert_array_equal(y_m(dl, loose), y_m(dl, fine))
 
 
 def _synthetic(defect, coarse_defect):
@@ -377,7 +376,7 @@ def test_ambiguous_certificate_is_decided_with_more_steps(monkeypatch):
     goes on to the next count of the ladder, whose offset and spread (against the first try)
     are inside the limit, and accepts the orbit with that monodromy (the first try alone would
     have refused it)."""
-    import rotbeam.solve.stability as stability
+    import rotbeam.solve.certify as certify
 
     dl, model, res = _beam_orbit(50.0, 10.0)
     fl = beam_floquet(model, res.theta, res.theta_t)
@@ -386,12 +385,12 @@ def test_ambiguous_certificate_is_decided_with_more_steps(monkeypatch):
     assert fl.steps == FIRST_STEPS and first.spread > 0.0
     ss_tol = 1e-3
     safety = ss_tol / (first.offset + first.spread / 2)  # limit inside the spread
-    monkeypatch.setattr(stability, "CERTIFICATE_SAFETY", safety)
+    monkeypatch.setattr(certify, "CERTIFICATE_SAFETY", safety)
     assert monodromy_certificate(fl, res.theta, ss_tol, wref).ambiguous
-    state, _, _ = accept_certified(model, Numerics(N=12, ss_tol=ss_tol), res, fl, 0.0)
+    state = accept_certified(model, Numerics(N=12, ss_tol=ss_tol), res, fl)
     finer = orbit_floquet(None, np.concatenate([res.theta, res.theta_t]).T, dl.period,
                           steps=STEP_LADDER[1], rows=_rows(model))  # fmt: skip
-    assert state is not None and state.floquet.steps == STEP_LADDER[1]
+    assert state.decided and state.status == 0 and state.floquet.steps == STEP_LADDER[1]
     np.testing.assert_array_equal(state.floquet.monodromy, finer.monodromy)
     assert monodromy_certificate(state.floquet, res.theta, ss_tol, wref).certified
 
@@ -411,7 +410,7 @@ def test_failed_certificate_refines_the_orbit_before_time_stepping(monkeypatch):
     """A limit put between the offsets of the first collocated orbit and of the next finer one
     (M -> 2M - 1): the steady state is the finer orbit, certified, with no period of time
     stepping, and its midspan RMS is the time-verified one's (tight ss_tol) to 1e-6."""
-    import rotbeam.solve.stability as stability
+    import rotbeam.solve.certify as certify
 
     dl = Dimensionless.from_physical(Beam(), Drive(omega0=10.0, f_d=7.0), Effects())
     num = Numerics(N=12)
@@ -426,11 +425,11 @@ def test_failed_certificate_refines_the_orbit_before_time_stepping(monkeypatch):
     ]
     assert offsets[1] < offsets[0] / 10  # the finer orbit's defect is far smaller
     limit = math.sqrt(offsets[0] * offsets[1])
-    monkeypatch.setattr(stability, "CERTIFICATE_SAFETY", num.ss_tol / limit)
+    monkeypatch.setattr(certify, "CERTIFICATE_SAFETY", num.ss_tol / limit)
     state = steady(dl, num)
     assert state.converged and state.periods == 0 and state.periodic.M == M
     assert "certified by the monodromy" in state.message
     monkeypatch.undo()
     verified = steady(dl, Numerics(N=12, certify="time", ss_tol=1e-7))
-    rms = [float(np.sqrt(np.mean(s.y_m**2))) for s in (state, verified)]
+    rms = [float(np.sqrt(np.mean(y_m(dl, s) ** 2))) for s in (state, verified)]
     assert rms[0] == pytest.approx(rms[1], rel=1e-6)

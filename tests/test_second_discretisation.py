@@ -16,7 +16,7 @@ sys.path.insert(0, str(Path(__file__).parent))
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 from chain_model import chain_steady_rms  # noqa: E402
-from conftest import steady  # noqa: E402
+from conftest import steady, y_m  # noqa: E402
 
 from rotbeam.model.criterion import rms  # noqa: E402
 from rotbeam.model.params import Beam, Dimensionless, Drive  # noqa: E402
@@ -41,4 +41,4 @@ def test_rms_agrees_with_rigid_link_chain(omega0, f_d):
     chain = chain_steady_rms(dl.lam0, dl.alpha, dl.omega, BEAM.delta, dl.eta, n_links=40,
                              rtol=1e-6, atol=1e-8)  # fmt: skip
     assert np.isfinite(chain["rms"])
-    assert rms(main.y_m) == pytest.approx(chain["rms"], rel=0.02)
+    assert rms(y_m(dl, main)) == pytest.approx(chain["rms"], rel=0.02)

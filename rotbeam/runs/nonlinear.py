@@ -23,6 +23,7 @@ from ..solve.beam_branch import BeamBranch, beam_branch
 from ..solve.continuation import Branch
 from ..solve.numerics import Numerics
 from ..solve.steady import steady_state
+from .observables import OBSERVABLES, States
 from .scene import discrete_model
 
 #: the arms of the branch and their direction in f_d
@@ -300,9 +301,10 @@ def follow_sweep(
         model = discrete_model(dl, num)
         ss = steady_state(model, num, state0=state, guess=guess if state is None else None)
         state = ss.state if ss.state is not None else state
+        y_m = OBSERVABLES["y_m"](model, beam, States(ss.tau, ss.theta))
         rows.append(
             {"amplitude": spec.amplitude, "kind": "sweep", "arm": sweep, "N": spec.N,
-             "f_d": float(f), "rms_ym": rms(ss.y_m), "max_ym": float(np.max(np.abs(ss.y_m))),
+             "f_d": float(f), "rms_ym": rms(y_m), "max_ym": float(np.max(np.abs(y_m))),
              "max_theta": float(np.max(np.abs(ss.theta))), "status": ss.status,
              "periods": ss.periods,
              "floquet_max": ss.floquet.max_abs if ss.floquet is not None else math.nan,

@@ -721,15 +721,16 @@ def _simulate_grid(
         theta_qs, y_qs = th_qs1[:, idx], np.atleast_1d(y_qs1)[idx]
     else:
         theta_qs, y_qs = quasistatic_midspan(model, dyn.tau)
-    r_dyn = rms(dyn.y_m)
+    y_dyn = OBSERVABLES["y_m"](model, scene.beam, States(dyn.tau, dyn.theta))
+    r_dyn = rms(y_dyn)
     r_qs = rms(y_qs)
-    if not math.isfinite(r_dyn) or dyn.y_m.size <= 1:
+    if not math.isfinite(r_dyn) or y_dyn.size <= 1:
         r_dyn = float("nan")  # no period stepped: the one sample is the initial state
     return SceneResult(
         scene=scene,
         dynamic=dyn,
         tau=dyn.tau,
-        y_dynamic=dyn.y_m,
+        y_dynamic=y_dyn,
         y_quasistatic=y_qs,
         theta_quasistatic=theta_qs,
         rms_dynamic=r_dyn,

@@ -4,7 +4,7 @@ The monodromy Phi is a product of matrix exponentials exp(h J) over S steps of t
 exponential midpoint rule, second-order Magnus), with J the exact Jacobian on the orbit's
 trigonometric interpolant; its eigenvalues are the multipliers, and max |mu| < 1 means the orbit
 attracts.  The same pass propagates the interpolant's residual: the one-period defect behind the
-certificate of `rotbeam.solve.stability`.  A first try of FIRST_STEPS steps stands when a coarse
+certificate of `rotbeam.solve.certify`.  A first try of FIRST_STEPS steps stands when a coarse
 product from the same exponentials agrees with it; otherwise the step counts of STEP_LADDER are
 taken in turn, each checked against the one before, until one stands.  Definitions, derivation,
 step counts and checks: docs/stability.md, "How the multipliers are computed" and "The
@@ -58,7 +58,7 @@ class FloquetResult:
 
     `orbit_floquet` and its beam versions make it; `max_abs`, `stable` and `crossing` give the
     verdict, and `fixed_point_offset` the distance to the true periodic state that the
-    certificate of `rotbeam.solve.stability` asks for.  Times are those of the system the
+    certificate of `rotbeam.solve.certify` asks for.  Times are those of the system the
     monodromy was built for (dimensionless tau, in units of T, for the beam).
     """
 

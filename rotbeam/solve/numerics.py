@@ -33,7 +33,7 @@ class Numerics:
     start: str = _d("start")  #: initial state: "periodic", "linear", "quasistatic" or "rest"
     tail_tol: float = _d("tail_tol")  #: harmonic tail of the periodic (collocation) start
     #: the reported |mu|max stands to this (the Floquet step ladder's spread,
-    #: rotbeam.solve.stability.reported_multipliers); 1 leaves it at what the stability verdict
+    #: rotbeam.solve.certify.reported_multipliers); 1 leaves it at what the stability verdict
     #: and the monodromy certificate needed
     floquet_tol: float = _d("floquet_tol")
     integrate: bool = _d("integrate")  #: verify the collocated orbit by time stepping

@@ -1,12 +1,13 @@
-"""Time stepping of the discrete model to its periodic steady state.
+"""The search for the periodic steady state of the discrete model: start, march, window.
 
 `steady_state` never raises for a solver failure: its `SteadyState` says whether a steady state
-was reached (`converged`, `status`) and why not (`message`), and its samples are what the
-integration saw.  It starts from a collocated orbit, accepts an attracting one by its monodromy
-certificate (refining it while that fails), or else marches period by period until the bound on
-the remaining transient is below ss_tol, then reports the RMS window and the multipliers of what
-it reports.  The criterion, the steps and their tolerances: docs/numerics.md, "The steady-state
-march"; the stability checks: docs/stability.md.
+was reached (`converged`, `status`) and why not (`message`), and its samples are the model's
+states the integration saw (observables such as y_m are evaluated on them by `rotbeam.runs`).
+It starts from a collocated orbit, asks `rotbeam.solve.certify` whether that orbit is the
+steady state (`certify_orbit`), or else marches period by period until the bound on the
+remaining transient is below ss_tol, samples the RMS window and asks for the verdict on it
+(`certify_window`).  The criterion, the steps and their tolerances: docs/numerics.md, "The
+steady-state march"; what the certification decides: docs/stability.md.
 """
 
 from __future__ import annotations
@@ -21,22 +22,13 @@ import numpy as np
 from ..model.base import DiscreteModel
 from ..model.modes import linear_forced_response
 from ..model.params import Dimensionless
-from .floquet import STEP_LADDER, FloquetResult
+from .certify import OrbitVerdict, certify_orbit, certify_window
+from .floquet import FloquetResult
 from .ivp import CUT, FAILED, IvpInterval, Stepped
 from .numerics import Numerics
-from .periodic import Neighbour, PeriodicResult, as_neighbour, refined, solve_periodic_adaptive
+from .periodic import Neighbour, PeriodicResult, as_neighbour, solve_periodic_adaptive
 from .quasistatic import quasistatic_series
 from .spectral import highest_harmonic, trig_interpolate
-from .stability import (
-    STATUS_UNSTABLE,
-    Certificate,
-    leave_orbit,
-    monodromy_certificate,
-    orbit_stability,
-    reported_multipliers,
-    stability_note,
-    window_stability,
-)
 from .system import FirstOrderSystem
 from .timebudget import OutOfTime, TimeBudget
 
@@ -45,13 +37,13 @@ from .timebudget import OutOfTime, TimeBudget
 class SteadyState:
     """Result of `steady_state`: samples over the RMS window and how they were reached.
 
-    Times are dimensionless (tau, in units of T = sqrt(rho A L^4 / EI)), angles in rad and
-    deflections in units of L.
+    Times are dimensionless (tau, in units of T = sqrt(rho A L^4 / EI)) and angles in rad.  The
+    result holds states, not outputs: the runs evaluate observables such as y_m on `theta`
+    (`rotbeam.runs.observables`).
     """
 
     tau: np.ndarray  #: sample instants (whole periods, endpoint excluded)
-    theta: np.ndarray  #: (N-1, m) angles at the samples
-    y_m: np.ndarray  #: midspan deflection y_m / L at the samples
+    theta: np.ndarray  #: (n, m) the model's coordinates at the samples (the elastica's: its angles)
     converged: bool  #: status == 0: a verified, stable steady state
     status: int  #: 0 steady, 1 no steady state within budget, 2 only an unstable orbit, -1 failure
     message: str  #: how the state was reached, or why not
@@ -273,115 +265,26 @@ def collocation_window(
 
 
 def _orbit_state(
-    model: DiscreteModel,
-    num: Numerics,
-    res: PeriodicResult,
-    fl: FloquetResult | None,
-    status: int,
-    message: str,
-    transient: float,
-    t0: float,
+    model: DiscreteModel, num: Numerics, orbit: OrbitVerdict, t0: float
 ) -> SteadyState:
-    """A SteadyState reported from the collocated orbit itself (no time stepping)."""
+    """A SteadyState reported from the collocated orbit itself (no time stepping), as
+    `certify_orbit` decided it."""
+    res = orbit.periodic
     tau, theta = collocation_window(model.dl, num, res)
     return SteadyState(
         tau=tau,
         theta=theta,
-        y_m=np.atleast_1d(model.midspan(theta)),
-        converged=status == 0,
-        status=status,
-        message=message,
+        converged=orbit.status == 0,
+        status=orbit.status,
+        message=orbit.message,
         periods=0,
-        transient=transient,
+        transient=orbit.transient,
         seconds=time.perf_counter() - t0,
         periodic=res,
-        floquet=fl,
-        state=np.concatenate([res.theta[:, 0], res.theta_t[:, 0]]) if status == 0 else None,
+        floquet=orbit.floquet,
+        state=np.concatenate([res.theta[:, 0], res.theta_t[:, 0]]) if orbit.status == 0 else None,
         samples_per_period=window_samples(model.dl, num, res),
     )
-
-
-def _from_collocation(
-    model: DiscreteModel, num: Numerics, res: PeriodicResult, t0: float
-) -> SteadyState:
-    """SteadyState straight from the collocation (no time stepping): `integrate=False`."""
-    fl = orbit_stability(model, res, candidate=True)
-    ok = res.converged and res.harmonic_tail <= num.tail_tol and model.damped
-    msg = f"collocation M={res.M}: {res.message}, harmonic tail {res.harmonic_tail:.2g}"
-    cert = _certificate(fl, res, num, model.dl)
-    if cert is not None:
-        msg += f"; {cert.describe()}"
-    fl = reported_multipliers(model, res, fl, num.floquet_tol)
-    msg += stability_note(fl)
-    unstable = ok and fl is not None and fl.unstable
-    if unstable:
-        ok = False
-        msg += " (not a steady state: the orbit is unstable)"
-    elif not model.damped:
-        msg += "; undamped model has no steady state (a periodic orbit, not an attractor)"
-    elif not ok:
-        msg += " (not verified: collocation did not meet its tolerance)"
-    status = 0 if ok else (STATUS_UNSTABLE if unstable else 1)
-    return _orbit_state(model, num, res, fl, status, msg, res.harmonic_tail, t0)
-
-
-def _certificate(
-    fl: FloquetResult | None, periodic: PeriodicResult, num: Numerics, dl: Dimensionless
-) -> Certificate | None:
-    """`monodromy_certificate` with the run's ss_tol and velocity scale max(omega, 1)."""
-    return monodromy_certificate(fl, periodic.theta, num.ss_tol, max(dl.omega, 1.0))
-
-
-def accept_certified(
-    model: DiscreteModel,
-    num: Numerics,
-    periodic: PeriodicResult,
-    fl: FloquetResult | None,
-    t0: float,
-) -> tuple[SteadyState | None, str, Certificate | None]:
-    """The collocated orbit as the steady state when its monodromy certificate holds.
-
-    An ambiguous certificate (the Floquet steps taken cannot tell) is decided again with the
-    next step counts of the ladder (`rotbeam.solve.floquet.STEP_LADDER`).
-
-    Parameters
-    ----------
-    model : DiscreteModel
-        The model.
-    num : Numerics
-        certify, tail_tol, ss_tol and the RMS window.
-    periodic : PeriodicResult
-        The collocated orbit.
-    fl : FloquetResult or None
-        Its multipliers and defect.
-    t0 : float
-        `time.perf_counter` at the start of the steady-state search (for `seconds`).
-
-    Returns
-    -------
-    state : SteadyState or None
-        The orbit as the steady state, or None.
-    why_not : str
-        Why not, for the message of the time-stepped check ('' when there was no certificate).
-    certificate : Certificate or None
-        The certificate decided by.
-    """
-    if num.certify != "monodromy" or periodic.harmonic_tail > num.tail_tol:
-        return None, "", None
-    cert = _certificate(fl, periodic, num, model.dl)
-    while cert is not None and cert.ambiguous and fl.steps < STEP_LADDER[-1]:
-        fl = orbit_stability(model, periodic, after=fl, candidate=True)  # more steps decide
-        cert = _certificate(fl, periodic, num, model.dl)
-    if cert is None:
-        return None, "", None
-    if not cert.certified:
-        return None, f"not certified by the monodromy ({cert.describe()}); ", cert
-    fl = reported_multipliers(model, periodic, fl, num.floquet_tol)
-    message = (
-        f"collocation orbit (M={periodic.M}, harmonic tail {periodic.harmonic_tail:.2g}) "
-        f"certified by the monodromy ({cert.describe()})" + stability_note(fl)
-    )
-    return _orbit_state(model, num, periodic, fl, 0, message, cert.offset, t0), "", cert
 
 
 @dataclass(frozen=True)
@@ -756,62 +659,6 @@ def rms_window(
     return Window(taus, sol.y[:n], 0, run.message, k + p, m)
 
 
-#: the finest collocation `certify_refining` goes to (solve_periodic_adaptive's M_max)
-REFINE_M_MAX = 129
-
-
-def certify_refining(
-    model: DiscreteModel,
-    num: Numerics,
-    periodic: PeriodicResult,
-    fl: FloquetResult | None,
-    t0: float,
-) -> tuple[SteadyState | None, str, PeriodicResult, FloquetResult | None]:
-    """`accept_certified`, with the orbit refined (`periodic.refined`, up to REFINE_M_MAX)
-    while its certificate fails on the offset estimate.
-
-    The offset falls with the interpolant's defect, and a finer orbit costs less than the
-    periods of time stepping that would verify the coarse one (docs/stability.md); the
-    refinement stops where the offset does not halve.
-
-    Parameters
-    ----------
-    model : DiscreteModel
-        The model and its drive.
-    num : Numerics
-        certify, tail_tol, ss_tol and the RMS window.
-    periodic : PeriodicResult
-        The collocated orbit.
-    fl : FloquetResult or None
-        Its multipliers and defect.
-    t0 : float
-        `time.perf_counter` at the start of the steady-state search (for `seconds`).
-
-    Returns
-    -------
-    state : SteadyState or None
-        The certified orbit as the steady state, or None.
-    why_not : str
-        Why the last orbit is not certified ('' without a certificate).
-    periodic : PeriodicResult
-        The last orbit.
-    fl : FloquetResult or None
-        Its multipliers.
-    """
-    state, why_not, cert = accept_certified(model, num, periodic, fl, t0)
-    while state is None and why_not and 2 * periodic.M - 1 <= REFINE_M_MAX:
-        finer = refined(model, periodic)
-        finer_fl = orbit_stability(model, finer, candidate=True)
-        if finer_fl is None or not finer_fl.stable:
-            break
-        previous = cert.offset
-        periodic, fl = finer, finer_fl
-        state, why_not, cert = accept_certified(model, num, periodic, fl, t0)
-        if cert is None or not cert.offset <= previous / 2:  # the defect does not fall with M
-            break
-    return state, why_not, periodic, fl
-
-
 def steady_state(
     model: DiscreteModel,
     numerics: Numerics | None = None,
@@ -823,11 +670,11 @@ def steady_state(
 ) -> SteadyState:
     """The periodic steady state of `model` under its drive, sampled over the RMS window.
 
-    The steps: the initial state (`starting_state`), the certificate of a collocated orbit
-    (`certify_refining`), the stepper's tolerances (`tolerances`), the march period by
-    period to the steady state (`march`, with a `TransientStepper`), the RMS window (`rms_window`)
-    and the stability of what is reported (`reported_stability`).  Never raises for a solver
-    failure: the result says whether a steady state was reached and why not.
+    The steps: the initial state (`starting_state`), the verdict on a collocated orbit
+    (`rotbeam.solve.certify.certify_orbit`), the stepper's tolerances (`tolerances`), the march
+    period by period to the steady state (`march`, with a `TransientStepper`), the RMS window
+    (`rms_window`) and the verdict on it (`rotbeam.solve.certify.certify_window`).  Never raises
+    for a solver failure: the result says whether a steady state was reached and why not.
 
     Parameters
     ----------
@@ -857,8 +704,9 @@ def steady_state(
     Returns
     -------
     SteadyState
-        The samples over the RMS window (tau in units of T, Theta, y_m / L), whether and how a
-        steady state was reached, the multipliers of the reported orbit, and the final state.
+        The samples over the RMS window (tau in units of T, the model's coordinates), whether
+        and how a steady state was reached, the multipliers of the reported orbit, and the
+        final state.
     """
     num = numerics if numerics is not None else Numerics()
     t0 = time.perf_counter()
@@ -866,39 +714,42 @@ def steady_state(
     try:
         with budget.watch():  # the collocation and its Floquet passes stop at the budget too
             z, periodic = starting_state(model, num, guess, state0)
-            if not num.integrate and periodic is not None:
-                return _from_collocation(model, num, periodic, t0)
-            state, why_not, periodic, orbit_fl = collocated_state(model, num, periodic, t0)
+            orbit = certify_orbit(model, num, periodic)
             continued_orbit = guess is not None and state0 is None and num.start == "periodic"
-            if state is None and continued_orbit and periodic is not None and periodic.converged:
+            if (
+                continued_orbit
+                and not orbit.decided
+                and orbit.periodic is not None
+                and orbit.periodic.converged
+            ):
                 # a continued orbit that is unstable or not certified (another branch; a
                 # coarse grid's resampled neighbour): the scene's own start, as solved alone,
                 # before time stepping (an orbit that did not converge was already solved
                 # alone: solve_periodic_adaptive)
                 _, own = starting_state(model, num, None, None)
-                state = collocated_state(model, num, own, t0)[0]
+                own_orbit = certify_orbit(model, num, own)
+                orbit = own_orbit if own_orbit.decided else orbit
     except OutOfTime:
         return _collocation_cut(model, budget, t0)
-    if state is not None:
-        return state
-    unstable_orbit = orbit_fl is not None and orbit_fl.unstable
-    from_orbit = periodic is not None and periodic.converged and not unstable_orbit
+    if orbit.decided:
+        return _orbit_state(model, num, orbit, t0)
+    periodic, from_orbit = orbit.periodic, orbit.on_orbit
     if from_orbit:
         z = np.concatenate([periodic.theta[:, 0], periodic.theta_t[:, 0]])
     tol = tolerances(model, num, z, response_scale, periodic, from_orbit)
-    if unstable_orbit:
-        z = leave_orbit(z, orbit_fl, tol.scale)
+    z = orbit.march_start(z, tol.scale)
     stepper = TransientStepper(model, num, tol, budget, window_samples(model.dl, num, periodic))
     run = march(stepper, z, from_orbit, progress)
     win = rms_window(stepper, run, periodic, from_orbit)
-    status, message, fl = reported_stability(model, num, win, orbit_fl, from_orbit, periodic)
+    verdict = certify_window(
+        model, num, orbit, win.status, win.message, win.periods, win.theta[:, -win.samples :]
+    )
     return SteadyState(
         tau=win.tau,
         theta=win.theta,
-        y_m=np.atleast_1d(model.midspan(win.theta)),
-        converged=status == 0,
-        status=status,
-        message=why_not + message,
+        converged=verdict.status == 0,
+        status=verdict.status,
+        message=verdict.message,
         periods=win.periods,
         transient=run.bound,
         nfev=stepper.nfev,
@@ -906,7 +757,7 @@ def steady_state(
         seconds=time.perf_counter() - t0,
         history=run.history,
         periodic=periodic,
-        floquet=fl,
+        floquet=verdict.floquet,
         state=run.z.copy(),
         samples_per_period=win.samples,
     )
@@ -919,7 +770,6 @@ def _collocation_cut(model: DiscreteModel, budget: TimeBudget, t0: float) -> Ste
     return SteadyState(
         tau=np.zeros(1),
         theta=np.zeros((model.n, 1)),
-        y_m=np.atleast_1d(model.midspan(np.zeros((model.n, 1)))),
         converged=False,
         status=1,
         message=f"no steady state: {budget.cut(where)}, before any time stepping",
@@ -927,90 +777,3 @@ def _collocation_cut(model: DiscreteModel, budget: TimeBudget, t0: float) -> Ste
         transient=math.inf,
         seconds=time.perf_counter() - t0,
     )
-
-
-def collocated_state(
-    model: DiscreteModel, num: Numerics, periodic: PeriodicResult | None, t0: float
-) -> tuple[SteadyState | None, str, PeriodicResult | None, FloquetResult | None]:
-    """The collocated orbit as the steady state when it is stable and certified
-    (`certify_refining`), with its multipliers either way.
-
-    Parameters
-    ----------
-    model : DiscreteModel
-        The model and its drive.
-    num : Numerics
-        certify, tail_tol, ss_tol and the RMS window.
-    periodic : PeriodicResult or None
-        The collocated orbit, if one was made.
-    t0 : float
-        `time.perf_counter` at the start of the steady-state search (for `seconds`).
-
-    Returns
-    -------
-    state : SteadyState or None
-        The certified orbit as the steady state, or None.
-    why_not : str
-        Why a stable orbit is not certified ('' otherwise).
-    periodic : PeriodicResult or None
-        The last orbit (refined while its certificate asked for it).
-    floquet : FloquetResult or None
-        Its multipliers (an unstable orbit's too: time stepping leaves it).
-    """
-    orbit_fl = orbit_stability(model, periodic, candidate=True)
-    unstable = orbit_fl is not None and orbit_fl.unstable
-    if periodic is None or not periodic.converged or unstable:
-        return None, "", periodic, orbit_fl
-    return certify_refining(model, num, periodic, orbit_fl, t0)
-
-
-def reported_stability(
-    model: DiscreteModel,
-    num: Numerics,
-    win: Window,
-    orbit_fl: FloquetResult | None,
-    from_orbit: bool,
-    periodic: PeriodicResult | None = None,
-) -> tuple[int, str, FloquetResult | None]:
-    """Status, message and multipliers of the reported state: the collocated orbit's when it was
-    verified in one period, else those of the orbit time stepping settled on (an unstable one is
-    a slow transient, not a steady state).
-
-    Parameters
-    ----------
-    model : DiscreteModel
-        The model and its drive.
-    num : Numerics
-        floquet_tol.
-    win : Window
-        The reported window (its last period's samples give the multipliers).
-    orbit_fl : FloquetResult or None
-        The collocated orbit's multipliers, if any.
-    from_orbit : bool
-        Whether the march started from the collocated orbit.
-    periodic : PeriodicResult or None
-        The collocated orbit: where its multipliers are the ones reported, their step count
-        goes on until |mu|max stands to num.floquet_tol (`reported_multipliers`).
-
-    Returns
-    -------
-    status : int
-        The window's, or STATUS_UNSTABLE when the orbit reached is unstable.
-    message : str
-        The window's message with the stability note.
-    floquet : FloquetResult or None
-        The multipliers of the reported orbit (else of the collocated one).
-    """
-    status, message = win.status, win.message
-    fl = orbit_fl if status == 0 and win.periods == 1 and from_orbit else None
-    if status == 0 and fl is None:
-        fl = window_stability(model, win.theta[:, -win.samples :])
-        if fl is not None and fl.unstable:
-            status = STATUS_UNSTABLE
-            message += "; but the orbit reached is unstable (a slow transient, not a steady state)"
-    if orbit_fl is not None and orbit_fl.unstable:
-        message = f"collocated orbit unstable ({orbit_fl.crossing()}); {message}"
-    if (fl is None or fl is orbit_fl) and periodic is not None:
-        fl = reported_multipliers(model, periodic, orbit_fl, num.floquet_tol)
-    message += stability_note(fl if fl is not None else orbit_fl)
-    return status, message, fl if fl is not None else orbit_fl
