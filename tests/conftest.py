@@ -135,7 +135,7 @@ def y_m(dl, state):
 
     from rotbeam.model.elastica import DiscreteElastica
 
-    return np.atleast_1d(DiscreteElastica(dl, state.theta.shape[0] + 1).midspan(state.theta))
+    return np.atleast_1d(DiscreteElastica(dl, state.theta.shape[1] + 1).midspan(state.theta))
 
 
 def numerical_first_order_jacobian(model, theta, theta_t, lam: float, lam_dot: float):

@@ -67,7 +67,7 @@ def test_time_certification_leaves_the_orbit_to_time_stepping(orbit):
     verdict = certify_orbit(model, Numerics(N=N, certify="time"), res)
     assert not verdict.decided and verdict.message == "" and verdict.certificate is None
     assert verdict.on_orbit and not verdict.unstable
-    z = np.concatenate([res.theta[:, 0], res.theta_t[:, 0]])
+    z = np.concatenate([res.theta[0], res.theta_t[0]])
     assert verdict.march_start(z, 1.0) is z  # not pushed
 
 
@@ -90,7 +90,7 @@ def test_window_on_an_unstable_orbit_is_flagged(orbit, monkeypatch):
     model, res = orbit
     num = Numerics(N=N, certify="time")
     m = num.samples_per_period
-    last = trig_interpolate(res.theta.T, m).T
+    last = trig_interpolate(res.theta, m)
     undecided = OrbitVerdict(None, None)
     ok = certify_window(model, num, undecided, 0, "steady after 5 periods", 5, last)
     assert ok.status == 0 and ok.floquet.stable
@@ -108,7 +108,7 @@ def test_window_that_verified_the_orbit_keeps_its_multipliers(orbit):
     model, res = orbit
     num = Numerics(N=N, certify="time")
     verdict = certify_orbit(model, num, res)
-    last = trig_interpolate(res.theta.T, num.samples_per_period).T
+    last = trig_interpolate(res.theta, num.samples_per_period)
     one = certify_window(model, num, verdict, 0, "verified", 1, last)
     expected = reported_multipliers(model, res, verdict.floquet, num.floquet_tol)
     assert one.status == 0 and one.message.startswith("verified; Floquet |mu|max")

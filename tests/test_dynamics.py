@@ -45,7 +45,7 @@ def test_periodic_state_is_a_fixed_point_of_the_period_map():
         a = m.acceleration(z[:n], z[n:], dl.lam(t), dl.lam_dot(t))
         return np.concatenate([z[n:], a])
 
-    z0 = np.concatenate([res.theta[:, 0], res.theta_t[:, 0]])
+    z0 = np.concatenate([res.theta[0], res.theta_t[0]])
     scale = np.abs(z0).max()
     atol = 1e-10 * scale * np.r_[np.ones(n), np.full(n, dl.omega)]
     sol = solve_ivp(
@@ -101,7 +101,7 @@ def test_verified_orbit_is_reported_from_the_collocation():
     num = Numerics(N=20, ss_tol=1e-2, rtol=1e-2, tail_tol=1e-2, certify="time")
     a = steady(dl, num)
     assert a.converged and a.periods == 1 and "verified" in a.message
-    samples = trig_interpolate(a.periodic.theta.T, num.samples_per_period).T
+    samples = trig_interpolate(a.periodic.theta, num.samples_per_period)
     np.testing.assert_allclose(a.theta, samples, rtol=0, atol=1e-14)
     tight = steady(dl, Numerics(N=20, start="quasistatic", ss_tol=1e-6, rtol=1e-8))
     assert tight.converged

@@ -96,7 +96,7 @@ def test_monodromy_against_finite_differences_of_the_period_map():
                         jac=jac)  # fmt: skip
         return sol.y[:, -1]
 
-    z0 = np.concatenate([res.theta[:, 0], res.theta_t[:, 0]])
+    z0 = np.concatenate([res.theta[0], res.theta_t[0]])
     eps = 1e-4
     fd = np.column_stack(
         [(period_map(z0 + eps * e) - period_map(z0 - eps * e)) / (2 * eps) for e in np.eye(2 * n)]
@@ -238,9 +238,7 @@ def test_beam_offset_estimate_against_a_resolved_orbit(N, omega0, f_d, Ms):
         r = solve_periodic(model, M)
         assert r.converged
         off = beam_floquet(model, r.theta, r.theta_t).fixed_point_offset()
-        true = np.concatenate(
-            [fine.theta[:, 0] - r.theta[:, 0], fine.theta_t[:, 0] - r.theta_t[:, 0]]
-        )
+        true = np.concatenate([fine.theta[0] - r.theta[0], fine.theta_t[0] - r.theta_t[0]])
         ratio = np.linalg.norm(off) / np.linalg.norm(true)
         assert np.linalg.norm(true) > 1e-8 and 1 / 1.5 < ratio < 1.5, (M, ratio)
 
@@ -388,7 +386,7 @@ def test_ambiguous_certificate_is_decided_with_more_steps(monkeypatch):
     monkeypatch.setattr(certify, "CERTIFICATE_SAFETY", safety)
     assert monodromy_certificate(fl, res.theta, ss_tol, wref).ambiguous
     state = accept_certified(model, Numerics(N=12, ss_tol=ss_tol), res, fl)
-    finer = orbit_floquet(None, np.concatenate([res.theta, res.theta_t]).T, dl.period,
+    finer = orbit_floquet(None, np.concatenate([res.theta, res.theta_t], axis=1), dl.period,
                           steps=STEP_LADDER[1], rows=_rows(model))  # fmt: skip
     assert state.decided and state.status == 0 and state.floquet.steps == STEP_LADDER[1]
     np.testing.assert_array_equal(state.floquet.monodromy, finer.monodromy)

@@ -73,8 +73,8 @@ def static_residual(res: SceneResult) -> float:
     model = DiscreteElastica(dl, res.scene.numerics.N)
     th = res.theta_quasistatic
     lam, lam_dot = model.drive_rows(res.tau)
-    r = float(np.max(np.abs(model.static_rows(th.T, lam, lam_dot))))
-    scale = float(np.max(np.abs(model.grid.K @ th)))
+    r = float(np.max(np.abs(model.static_rows(th, lam, lam_dot))))
+    scale = float(np.max(np.abs(th @ model.grid.K.T)))
     if scale == 0.0:
         assert r == 0.0  # straight beam: the residual must vanish exactly
         return 0.0

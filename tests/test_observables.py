@@ -127,11 +127,11 @@ def start_acceleration(scene):
     """(a_x, a_y) of the tip at t = 0 of a move from rest, dynamic and quasi-static."""
     model, beam = scene.model(), scene.beam
     lam0, lam_dot0 = model.drive_rows(np.array([0.0]))
-    theta = solve_static(model, float(lam0[0]), 0.0).theta[:, None]
+    theta = solve_static(model, float(lam0[0]), 0.0).theta[None]
     zero = np.zeros_like(theta)
-    acc = model.acceleration(theta[:, 0], zero[:, 0], float(lam0[0]), float(lam_dot0[0]))
+    acc = model.acceleration(theta[0], zero[0], float(lam0[0]), float(lam_dot0[0]))
     tau = np.array([0.0])
-    dyn = tip_acceleration_components(model, beam, States(tau, theta, zero, acc[:, None]))
+    dyn = tip_acceleration_components(model, beam, States(tau, theta, zero, acc[None]))
     qs_theta = quasistatic_series(model, tau)
     qs = tip_acceleration_components(model, beam, States(tau, qs_theta, zero, zero))
     return [float(a[0]) for a in dyn], [float(a[0]) for a in qs]
@@ -193,13 +193,16 @@ def test_periodic_rates_of_a_trigonometric_polynomial():
     period, m = 0.7, 32
     tau = np.arange(m) / m * period
     w = 2 * math.pi / period
-    x = np.vstack([np.sin(w * tau) + 0.3 * np.cos(3 * w * tau + 0.2), np.full(m, 2.0)])
+    x = np.column_stack([np.sin(w * tau) + 0.3 * np.cos(3 * w * tau + 0.2), np.full(m, 2.0)])
     first, second = periodic_rates(x, period)
-    np.testing.assert_allclose(first[0], w * np.cos(w * tau) - 0.9 * w * np.sin(3 * w * tau + 0.2),
+    np.testing.assert_allclose(first[:, 0],
+                               w * np.cos(w * tau) - 0.9 * w * np.sin(3 * w * tau + 0.2),
                                atol=1e-12 * w)  # fmt: skip
     want = -(w**2) * np.sin(w * tau) - 2.7 * w**2 * np.cos(3 * w * tau + 0.2)
-    np.testing.assert_allclose(second[0], want, atol=1e-11 * w**2)
-    np.testing.assert_allclose(first[1], 0.0, atol=1e-12)
+    np.testing.assert_allclose(second[:, 0], want, atol=1e-11 * w**2)
+    np.testing.assert_allclose(first[:, 1], 0.0, atol=1e-12)
+    along_last = periodic_rates(x.T, period, axis=-1)
+    np.testing.assert_array_equal(along_last[0], first.T)
 
 
 def test_unknown_observable_is_one_line():

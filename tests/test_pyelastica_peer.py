@@ -57,10 +57,10 @@ def orbit_start(beam: Beam, drive: pe.Drive, res):
     scene = res.scene
     model = DiscreteElastica(scene.dimensionless, scene.numerics.N)
     th = res.dynamic.theta
-    m = th.shape[1]
-    s, x, y = model.grid.full_shape(th[:, 0])
-    _, xp, yp = model.grid.full_shape(th[:, 1])
-    _, xm, ym = model.grid.full_shape(th[:, -1])
+    m = th.shape[0]
+    s, x, y = model.grid.full_shape(th[0])
+    _, xp, yp = model.grid.full_shape(th[1])
+    _, xm, ym = model.grid.full_shape(th[-1])
     dt = 2.0 / (drive.f_d * m)  # central difference over two samples [s]
     return lambda rod: pe.start_from(rod, beam, drive, s, x, y, (xp - xm) / dt, (yp - ym) / dt)
 

@@ -159,12 +159,12 @@ def test_compiled_dop853_follows_scipy_dop853():
     y0 = np.concatenate([z0, np.ones(2 * n) / math.sqrt(2 * n)])
     t_eval = np.linspace(0.0, P / 4, 5)
     y, samples, _ = stepping.CompiledStepper(model, 1e-10, atol).tangent(0.0, P / 4, y0, t_eval)
-    assert samples.shape == (2 * n, 4)
-    np.testing.assert_array_equal(samples[:, 0], z0)
+    assert samples.shape == (4, 2 * n)
+    np.testing.assert_array_equal(samples[0], z0)
     again, yk = stepping.CompiledStepper(model, 1e-10, atol), y0
     for k in range(1, 5):
         yk, _, _ = again.tangent(t_eval[k - 1], t_eval[k], yk, None)
-        np.testing.assert_array_equal(samples[:, k] if k < 4 else y[: 2 * n], yk[: 2 * n])
+        np.testing.assert_array_equal(samples[k] if k < 4 else y[: 2 * n], yk[: 2 * n])
 
 
 def test_new_path_against_the_radau_path_on_the_chaotic_attractor():

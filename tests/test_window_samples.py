@@ -124,7 +124,7 @@ def test_trapezoid_delta_rms_is_the_finer_windows(tmp_path):
     P = model.dl.period
 
     def by_hand(m: int) -> float:
-        y_dyn = model.midspan(trig_interpolate(orbit.theta.T, m).T)
+        y_dyn = model.midspan(trig_interpolate(orbit.theta, m))
         y_qs = quasistatic_midspan(model, np.arange(m) / m * P)[1]
         return delta_rms(rms(y_dyn), rms(y_qs))
 

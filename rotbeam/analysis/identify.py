@@ -127,7 +127,7 @@ class ResonanceModel:
                 )
             orbit = res.dynamic.periodic
             if orbit is not None and orbit.converged:
-                self._guess[k] = orbit.theta.T
+                self._guess[k] = orbit.theta
             out[k] = res.rms_dynamic
         self._cache[key] = out
         return out

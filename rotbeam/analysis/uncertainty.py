@@ -444,7 +444,7 @@ def simulate_spread(
     from ..runs.scene import simulate
 
     orbit = plain.dynamic.periodic
-    guess = orbit.theta.T if orbit is not None and orbit.converged else None
+    guess = orbit.theta if orbit is not None and orbit.converged else None
 
     def run(values: dict[str, float]) -> dict[str, float]:
         beam, drive = apply(scene.beam, scene.drive, values)

@@ -366,7 +366,7 @@ class _Excess:
                     f"no steady state at f_d = {f_d:.4g} Hz: {res.dynamic.message}"
                 )
             orbit = res.dynamic.periodic
-            self.guess = orbit.theta.T if orbit is not None and orbit.converged else None
+            self.guess = orbit.theta if orbit is not None and orbit.converged else None
             self.seen[f_d] = d
             if self.progress is not None:
                 self.progress()

@@ -105,7 +105,7 @@ def baseline_run(plan: BenchPlan, omega0: float, f_d: float, N: int, rtol: float
     else:
         row.update(nfev=sol.nfev, njev=sol.njev, message=f"{K} + {p} periods: {sol.message}")
         if sol.success and np.all(np.isfinite(sol.y)):
-            r = rms(np.atleast_1d(model.grid.midspan(sol.y[:n])))
+            r = rms(np.atleast_1d(model.grid.midspan(sol.y[:n].T)))  # scipy: states in columns
             r_qs = rms(np.tile(y_qs, p))
             row.update(rms=r, delta_rms=delta_rms(r, r_qs), converged=True, status=0)
     row["seconds"] = time.perf_counter() - t0

@@ -388,12 +388,12 @@ class DiscreteModel(ABC):
         Parameters
         ----------
         theta : numpy.ndarray
-            Coordinates, shape (n,) or (n, m).
+            Coordinates, shape (n,) or (m, n) at m instants.
 
         Returns
         -------
         numpy.ndarray
-            Angles [rad] at the grid's nodes 1..N-1, shape (N - 1,) or (N - 1, m).
+            Angles [rad] at the grid's nodes 1..N-1, shape (N - 1,) or (m, N - 1).
         """
         return np.asarray(theta, dtype=float)
 
@@ -403,7 +403,7 @@ class DiscreteModel(ABC):
         Parameters
         ----------
         theta : numpy.ndarray
-            Coordinates, shape (n,) or (n, m).
+            Coordinates, shape (n,) or (m, n) at m instants.
 
         Returns
         -------
@@ -418,7 +418,7 @@ class DiscreteModel(ABC):
         Parameters
         ----------
         theta : numpy.ndarray
-            Coordinates, shape (n,) or (n, m).
+            Coordinates, shape (n,) or (m, n) at m instants.
 
         Returns
         -------

@@ -204,24 +204,24 @@ class Grid:
         Parameters
         ----------
         theta : numpy.ndarray
-            Angles [rad] at nodes 1..N-1, shape (N-1,) or (N-1, m).
+            Angles [rad] at nodes 1..N-1, shape (N-1,) or (m, N-1) at m instants.
 
         Returns
         -------
         x, y : numpy.ndarray
-            At nodes 1..N relative to the clamp, in units of L, shape (N,) or (N, m).
+            At nodes 1..N relative to the clamp, in units of L, shape (N,) or (m, N).
         """
-        x = self.x0 + self.P @ np.cos(theta)
-        y = self.P @ np.sin(theta)
+        x = self.x0 + np.cos(theta) @ self.P.T
+        y = np.sin(theta) @ self.P.T
         return x, y
 
     def midspan(self, theta: np.ndarray) -> np.ndarray:
-        """y_m = y(s = 1/2) from Theta of shape (N-1,) or (N-1, m).
+        """y_m = y(s = 1/2) from Theta of shape (N-1,) or (m, N-1).
 
         Parameters
         ----------
         theta : numpy.ndarray
-            Angles at nodes 1..N-1, one column per instant.
+            Angles at nodes 1..N-1, one row per instant.
 
         Returns
         -------
@@ -237,14 +237,14 @@ class Grid:
         Parameters
         ----------
         theta, theta_t : numpy.ndarray
-            Angles [rad] and their rates (units of 1/T), shape (N-1,) or (N-1, m).
+            Angles [rad] and their rates (units of 1/T), shape (N-1,) or (m, N-1).
 
         Returns
         -------
         numpy.ndarray
             dy_m/dtau in units of L/T: a scalar array or shape (m,).
         """
-        return self.at_midspan(self.P @ (np.cos(theta) * theta_t))
+        return self.at_midspan((np.cos(theta) * theta_t) @ self.P.T)
 
     def at_midspan(self, nodal: np.ndarray) -> np.ndarray:
         """A nodal quantity at s = 1/2: the node's value for even N, linear interpolation for odd.
@@ -252,7 +252,7 @@ class Grid:
         Parameters
         ----------
         nodal : numpy.ndarray
-            Values at nodes 1..N (rows), shape (N,) or (N, m).
+            Values at nodes 1..N (the last axis), shape (N,) or (m, N).
 
         Returns
         -------
@@ -260,10 +260,10 @@ class Grid:
             The value at s = 1/2: a scalar array or shape (m,).
         """
         if self.mid >= 0:
-            return nodal[self.mid]
-        i = self.N // 2  # node i at s_i < 1/2 < s_{i+1}: rows i-1, i
+            return nodal[..., self.mid]
+        i = self.N // 2  # node i at s_i < 1/2 < s_{i+1}: columns i-1, i
         w = 0.5 * self.N - i
-        return (1 - w) * nodal[i - 1] + w * nodal[i]
+        return (1 - w) * nodal[..., i - 1] + w * nodal[..., i]
 
     def tip(self, theta: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """The position of the free end (node N) relative to the clamp.
@@ -271,7 +271,7 @@ class Grid:
         Parameters
         ----------
         theta : numpy.ndarray
-            Angles [rad], shape (N-1,) or (N-1, m).
+            Angles [rad], shape (N-1,) or (m, N-1).
 
         Returns
         -------
@@ -279,7 +279,7 @@ class Grid:
             In units of L: scalar arrays or shape (m,).
         """
         x, y = self.positions(theta)
-        return x[-1], y[-1]
+        return x[..., -1], y[..., -1]
 
     def full_shape(self, theta: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """The whole centerline, clamp included, for one Theta (figures and animations).

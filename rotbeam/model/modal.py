@@ -182,14 +182,14 @@ class ModalModel(DiscreteModel):
         Parameters
         ----------
         theta : numpy.ndarray
-            Modal amplitudes q, shape (n,) or (n, m).
+            Modal amplitudes q, shape (n,) or (m, n) at m instants.
 
         Returns
         -------
         numpy.ndarray
-            Angles [rad], shape (N - 1,) or (N - 1, m).
+            Angles [rad], shape (N - 1,) or (m, N - 1).
         """
-        return self.phi @ np.asarray(theta, dtype=float)
+        return np.asarray(theta, dtype=float) @ self.phi.T
 
 
 class ModalRows(Residual):

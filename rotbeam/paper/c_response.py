@@ -50,7 +50,7 @@ def midspan_measure(
     grid : Grid
         The model's grid.
     theta : numpy.ndarray
-        Angles of the nodes, shape (n,) or (n, m) for m instants.
+        Angles of the nodes, shape (n,) or (m, n) for m instants.
     s : float
         Arclength as a fraction of L (dimensionless).
     measure : str
@@ -71,17 +71,17 @@ def midspan_measure(
     ValueError
         For an unknown measure.
     """
-    theta = theta[:, None] if theta.ndim == 1 else theta
-    x, y = grid.positions(theta)  # nodes 1..N
+    theta = theta[None] if theta.ndim == 1 else theta
+    x, y = grid.positions(theta)  # nodes 1..N, shape (m, N)
     S = np.concatenate([[0.0], grid.s])
-    X = np.vstack([np.zeros((1, x.shape[1])), x])
-    Y = np.vstack([np.zeros((1, y.shape[1])), y])
-    xm = np.array([np.interp(s, S, X[:, k]) for k in range(X.shape[1])])
-    ym = np.array([np.interp(s, S, Y[:, k]) for k in range(Y.shape[1])])
+    X = np.hstack([np.zeros((x.shape[0], 1)), x])
+    Y = np.hstack([np.zeros((y.shape[0], 1)), y])
+    xm = np.array([np.interp(s, S, row) for row in X])
+    ym = np.array([np.interp(s, S, row) for row in Y])
     if measure == "y":
         return ym
     if measure == "chord":
-        xt, yt = X[-1], Y[-1]
+        xt, yt = X[:, -1], Y[:, -1]
         return (ym * xt - xm * yt) / np.hypot(xt, yt)
     if measure == "lab":
         phi = -(dl.alpha / dl.omega) * np.cos(dl.omega * tau)  # disk angle minus Omega_0 t
@@ -106,13 +106,13 @@ def continuum_quasistatic_theta(
     Returns
     -------
     list of (Grid, numpy.ndarray)
-        [(grid N/2, Theta), (grid N, Theta)], each Theta of shape (n, m).
+        [(grid N/2, Theta), (grid N, Theta)], each Theta of shape (m, n).
     """
     return [_quasistatic_on_grid(dl, n, taus) for n in (N // 2, N)]
 
 
 def _quasistatic_on_grid(dl: Dimensionless, N: int, taus: np.ndarray) -> tuple[Grid, np.ndarray]:
-    """(grid, Theta (n, m), read-only) of the quasi-static series on grid N: solved once a
+    """(grid, Theta (m, n), read-only) of the quasi-static series on grid N: solved once a
     process for every hypothesis that reads the same scene (they differ in the measure, the
     scale or the dynamic side)."""
     return _cached_quasistatic(dl, N, tuple(np.asarray(taus, float)))
@@ -192,7 +192,7 @@ def _ours_orbit(model: DiscreteModel, m: int, state: dict, guess=None):
     ss = steady_state(model, num, guess=state.get("guess") if guess is None else guess)
     if not ss.converged:
         raise RuntimeError(f"no periodic orbit: {ss.message}")
-    state["guess"] = ss.periodic.theta.T
+    state["guess"] = ss.periodic.theta
     return ss
 
 
@@ -219,7 +219,7 @@ def periodic_response(
     Returns
     -------
     theta : numpy.ndarray
-        Shape (n, m).
+        Shape (m, n).
     taus : numpy.ndarray
         Dimensionless times of the samples, shape (m,).
 
@@ -232,13 +232,13 @@ def periodic_response(
         ss = _ours_orbit(model, m, state)
         return ss.theta, ss.tau
     res = solve_periodic(model, guess=state.get("guess"), maxiter=30)
-    if not res.converged or harmonic_tail(res.theta.T) > 1e-4:
+    if not res.converged or harmonic_tail(res.theta) > 1e-4:
         res = solve_periodic(model, maxiter=30)
     if not res.converged:
         raise RuntimeError("no periodic orbit of the printed model")
-    X = res.theta.T
+    X = res.theta
     state["guess"] = X
-    return trig_interpolate(X, m).T, np.arange(m) / m * model.dl.period
+    return trig_interpolate(X, m), np.arange(m) / m * model.dl.period
 
 
 def _stepper(h: Any, model: DiscreteModel):
@@ -271,7 +271,7 @@ def integrator_steps_response(
     Returns
     -------
     theta : numpy.ndarray
-        Shape (n, k), k the steps kept.
+        Shape (k, n), k the steps kept.
     taus : numpy.ndarray
         Their dimensionless times (not uniform), shape (k,).
 
@@ -283,7 +283,7 @@ def integrator_steps_response(
     n, P = model.n, model.dl.period
     if h.dynamics == "steps":
         ss = _ours_orbit(model, 32, state)
-        z0 = np.concatenate([ss.periodic.theta[:, 0], ss.periodic.theta_t[:, 0]])
+        z0 = np.concatenate([ss.periodic.theta[0], ss.periodic.theta_t[0]])
         t_end, keep = h.step_periods * P, (h.step_periods - 2) * P
     else:
         z0 = np.zeros(2 * n)
@@ -297,7 +297,7 @@ def integrator_steps_response(
     if sol.t[sel][-1] >= t_end - 1e-12 * P:  # [keep, t_end): one end of a whole period
         sel &= sol.t < t_end - 1e-12 * P
     state["steps"] = int(sel.sum())
-    return sol.y[:n, sel], sol.t[sel]
+    return sol.y[:n, sel].T, sol.t[sel]  # solve_ivp's states in columns, turned to rows
 
 
 def rest_response(h: Any, model: DiscreteModel, m: int, T: float) -> tuple[np.ndarray, np.ndarray]:
@@ -321,7 +321,7 @@ def rest_response(h: Any, model: DiscreteModel, m: int, T: float) -> tuple[np.nd
     Returns
     -------
     theta : numpy.ndarray
-        Shape (n, k).
+        Shape (k, n).
     taus : numpy.ndarray
         Dimensionless times of the samples, shape (k,).
 
@@ -348,7 +348,7 @@ def rest_response(h: Any, model: DiscreteModel, m: int, T: float) -> tuple[np.nd
                     atol=h.atol, jac=jac, t_eval=taus)  # fmt: skip
     if not sol.success:
         raise RuntimeError(f"time stepping failed: {sol.message}")
-    return sol.y[: model.n], taus
+    return sol.y[: model.n].T, taus  # solve_ivp's states in columns, turned to rows
 
 
 def dynamic_response(
@@ -377,7 +377,7 @@ def dynamic_response(
     grid : Grid
         The dynamic model's grid.
     theta : numpy.ndarray
-        Shape (n, k).
+        Shape (k, n).
     taus : numpy.ndarray
         Dimensionless times, shape (k,).
     """

@@ -66,9 +66,9 @@ class MoveResult:
     message: str
     nfev: int
     seconds: float
-    theta: np.ndarray | None = None  #: (n, m) angles [rad] at the samples
-    theta_t: np.ndarray | None = None  #: (n, m) their rates (units of 1/T)
-    theta_quasistatic: np.ndarray | None = None  #: (n, m) the quasi-static twin's angles
+    theta: np.ndarray | None = None  #: (m, n) angles [rad] at the samples
+    theta_t: np.ndarray | None = None  #: (m, n) their rates (units of 1/T)
+    theta_quasistatic: np.ndarray | None = None  #: (m, n) the quasi-static twin's angles
 
     def observables(self, names: str | Iterable[str] = ("y_m",)) -> dict[str, dict[str, Any]]:
         """Observables of the move, dynamic beside quasi-static (docs/model.md, "Observables").
@@ -152,9 +152,9 @@ class MoveResult:
 def _accelerations(model, states: States) -> np.ndarray:
     """Theta_tt at each sample from the equation of motion (`DiscreteModel.acceleration`)."""
     lam, lam_dot = model.drive_rows(states.tau)
-    cols = [model.acceleration(states.theta[:, k], states.theta_t[:, k], lam[k], lam_dot[k])
+    rows = [model.acceleration(states.theta[k], states.theta_t[k], lam[k], lam_dot[k])
             for k in range(states.tau.size)]  # fmt: skip
-    return np.array(cols).T if cols else np.zeros_like(states.theta)
+    return np.array(rows) if rows else np.zeros_like(states.theta)
 
 
 @one_blas_thread
@@ -239,7 +239,7 @@ def simulate_move(
     lam_all = np.array([law.lam(t) for t in tau_all])
     y_qs_all = np.concatenate([qs_move, np.zeros(after.size)])  # the straight beam after it
     n_move, n = int(in_move.sum()), model.n
-    theta_qs_all = np.concatenate([theta_qs[:, :n_move], np.zeros((n, after.size))], axis=1)
+    theta_qs_all = np.concatenate([theta_qs[:n_move], np.zeros((after.size, n))])
     return MoveResult(
         scene=scene,
         t_s=tau_all * T,
@@ -259,8 +259,8 @@ def simulate_move(
         message=message,
         nfev=run.nfev,
         seconds=time.perf_counter() - t0,
-        theta=np.array(run.samples).T.reshape(n, -1),
-        theta_t=np.array(run.rates).T.reshape(n, -1),
+        theta=np.array(run.samples).reshape(-1, n),
+        theta_t=np.array(run.rates).reshape(-1, n),
         theta_quasistatic=theta_qs_all,
     )
 
@@ -279,8 +279,8 @@ def _resting_state(model, lam: float) -> np.ndarray:
 def _moving_state(taus: np.ndarray, theta_qs: np.ndarray) -> np.ndarray:
     """(Theta, Theta_t) of the quasi-static state at the first sample (its rate by a one-sided
     difference of the quasi-static series): `move_start: quasistatic`."""
-    rate = (theta_qs[:, 1] - theta_qs[:, 0]) / (taus[1] - taus[0])
-    return np.concatenate([theta_qs[:, 0], rate])
+    rate = (theta_qs[1] - theta_qs[0]) / (taus[1] - taus[0])
+    return np.concatenate([theta_qs[0], rate])
 
 
 def _reporter(progress, scene: Scene, law, f1_end: float) -> Callable[[float], None] | None:
@@ -334,9 +334,9 @@ class _Stepper:
             self.ok = False
             return False, f"integrator failed at t = {self.tau:.4g} T: {sol.message}"
         self.times += list(sol.t[:-1])
-        self.samples += list(sol.y[:n, :-1].T)
-        self.rates += list(sol.y[n:, :-1].T)
-        self.z, self.tau = sol.y[:, -1], t_end
+        self.samples += list(sol.y[:-1, :n])
+        self.rates += list(sol.y[:-1, n:])
+        self.z, self.tau = sol.y[-1], t_end
         if self.report is not None:
             self.report(t_end)
         return True, "through the move"
@@ -345,7 +345,7 @@ class _Stepper:
         """y_m / L at every sample so far."""
         if not self.samples:
             return np.zeros(0)
-        return np.atleast_1d(model.midspan(np.array(self.samples).T))
+        return np.atleast_1d(model.midspan(np.array(self.samples)))
 
 
 def _settle(run: _Stepper, model, scene: Scene, peak: float, chunk: float, dt: float):

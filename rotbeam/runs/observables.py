@@ -31,11 +31,11 @@ class States:
     tau : numpy.ndarray
         Instants in units of T, shape (m,).
     theta : numpy.ndarray
-        Angles [rad] at the grid's nodes 1..N-1, shape (n, m).
+        Angles [rad] at the grid's nodes 1..N-1, shape (m, n).
     theta_t : numpy.ndarray or None
-        Their rates (units of 1/T), shape (n, m); None where the response has none.
+        Their rates (units of 1/T), shape (m, n); None where the response has none.
     theta_tt : numpy.ndarray or None
-        Their accelerations (units of 1/T^2), shape (n, m); None where the response has none.
+        Their accelerations (units of 1/T^2), shape (m, n); None where the response has none.
     """
 
     tau: np.ndarray
@@ -106,18 +106,18 @@ def on_the_beam(model: DiscreteModel, states: States) -> States:
     model : DiscreteModel
         The model whose coordinates `states` holds.
     states : States
-        Coordinates, shape (model.n, m), and their rates.
+        Coordinates, shape (m, model.n), and their rates.
 
     Returns
     -------
     States
-        Angles [rad] at the grid's nodes 1..N-1, shape (N - 1, m), and their rates.
+        Angles [rad] at the grid's nodes 1..N-1, shape (m, N - 1), and their rates.
     """
 
     def up(x: np.ndarray | None) -> np.ndarray | None:
         if x is None:
             return None
-        return model.beam_angles(np.asarray(x, dtype=float).reshape(model.n, -1))
+        return model.beam_angles(np.asarray(x, dtype=float).reshape(-1, model.n))
 
     return States(states.tau, up(states.theta), up(states.theta_t), up(states.theta_tt))
 
@@ -144,16 +144,16 @@ def root_curvature(model: DiscreteModel, theta: np.ndarray) -> np.ndarray:
     model : DiscreteModel
         The model (its grid's ds).
     theta : numpy.ndarray
-        Angles [rad] at nodes 1..N-1, shape (n, m).
+        Angles [rad] at nodes 1..N-1, shape (m, N - 1).
 
     Returns
     -------
     numpy.ndarray
         The curvature at s = 0 in units of 1/L (reference arc length), shape (m,).
     """
-    theta = np.asarray(theta, dtype=float).reshape(model.grid.N - 1, -1)
-    second = theta[1] if theta.shape[0] > 1 else theta[0]
-    return (4.0 * theta[0] - second) / (2.0 * model.grid.ds)
+    theta = np.asarray(theta, dtype=float).reshape(-1, model.grid.N - 1)
+    second = theta[:, 1] if theta.shape[1] > 1 else theta[:, 0]
+    return (4.0 * theta[:, 0] - second) / (2.0 * model.grid.ds)
 
 
 def _root_moment(model: DiscreteModel, beam: Beam, states: States) -> np.ndarray:
@@ -190,14 +190,14 @@ def tip_kinematics(
     """
     grid = model.grid
     p = grid.P[-1]
-    th = np.asarray(states.theta, dtype=float).reshape(model.grid.N - 1, -1)
+    th = np.asarray(states.theta, dtype=float).reshape(-1, model.grid.N - 1)
     c, s = np.cos(th), np.sin(th)
     th_t = np.asarray(states.theta_t, dtype=float).reshape(th.shape)
     th_tt = np.asarray(states.theta_tt, dtype=float).reshape(th.shape)
-    x, y = grid.x0 + p @ c, p @ s
-    x_t, y_t = -(p @ (s * th_t)), p @ (c * th_t)
-    x_tt = -(p @ (s * th_tt + c * th_t**2))
-    y_tt = p @ (c * th_tt - s * th_t**2)
+    x, y = grid.x0 + c @ p, s @ p
+    x_t, y_t = -((s * th_t) @ p), (c * th_t) @ p
+    x_tt = -((s * th_tt + c * th_t**2) @ p)
+    y_tt = (c * th_tt - s * th_t**2) @ p
     return x, y, x_t, y_t, x_tt, y_tt
 
 
@@ -335,7 +335,7 @@ def window_rates(
     Parameters
     ----------
     theta : numpy.ndarray
-        Angles at the window's instants, shape (n, periods * per_period).
+        Angles at the window's instants, shape (periods * per_period, n).
     per_period : int
         Instants per period (0: none).
     period : float
@@ -346,12 +346,12 @@ def window_rates(
     (theta_t, theta_tt) or None
         Each the shape of `theta`; None where the window is not whole periods.
     """
-    size = theta.shape[-1]
+    size = theta.shape[0]
     if per_period < 4 or size % per_period:
         return None
-    n, q = theta.shape[0], size // per_period
-    first, second = periodic_rates(theta.reshape(n, q, per_period), period)
-    return first.reshape(n, size), second.reshape(n, size)
+    q, n = size // per_period, theta.shape[1]
+    first, second = periodic_rates(theta.reshape(q, per_period, n), period, axis=1)
+    return first.reshape(size, n), second.reshape(size, n)
 
 
 def still(theta: np.ndarray) -> np.ndarray:

@@ -337,12 +337,12 @@ def _classified(model: DiscreteModel, T: float, P: float, ly, tol: float) -> dic
     # running mean (rotbeam.solve.lyapunov); Benettin's full-run mean is kept as `running`
     lam, spread = (ly.late, ly.late_spread) if math.isfinite(ly.late) else (ly.exponent, ly.spread)
     response, q = classify(dist, lam * P, spread * P, tol)
-    theta_s = sec[:, :n].T
+    theta_s = sec[:, :n]
     y_sec = np.atleast_1d(model.midspan(theta_s))
-    rates = model.beam_angles(sec[:, n:].T)
+    rates = model.beam_angles(sec[:, n:])
     yt_sec = np.atleast_1d(model.grid.midspan_rate(model.beam_angles(theta_s), rates)) / T
-    theta_all = np.concatenate(ly.samples, axis=1) if ly.samples else theta_s
-    y_all = np.atleast_1d(model.midspan(theta_all[:n]))
+    theta_all = np.concatenate(ly.samples)[:, :n] if ly.samples else theta_s
+    y_all = np.atleast_1d(model.midspan(theta_all))
     f, amp, peaks = _spectrum(y_all, P * T / SAMPLES)
     return {
         "response": response,

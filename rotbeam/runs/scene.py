@@ -375,7 +375,7 @@ class SceneResult:
     tau: np.ndarray
     y_dynamic: np.ndarray
     y_quasistatic: np.ndarray
-    theta_quasistatic: np.ndarray
+    theta_quasistatic: np.ndarray  #: (m, n) the quasi-static twin at the window's instants
     rms_dynamic: float
     rms_quasistatic: float
     delta_rms: float
@@ -515,15 +515,15 @@ class SceneResult:
         periods = size // m
         model = self.scene.model()
         P = model.dl.period
-        theta = self.dynamic.theta.reshape(model.n, periods, m)
-        dense = [trig_interpolate(theta[:, q].T, samples).T for q in range(periods)]
+        theta = self.dynamic.theta.reshape(periods, m, model.n)
+        dense = [trig_interpolate(theta[q], samples) for q in range(periods)]
         tau = self.tau[0] + np.arange(periods * samples) * (P / samples)
         y_qs = quasistatic_midspan(model, tau[:samples])[1]
         T = self.scene.beam.T
         return {
             "tau": tau,
             "t_s": tau * T,
-            "y_m_dynamic": np.atleast_1d(model.midspan(np.concatenate(dense, axis=1))),
+            "y_m_dynamic": np.atleast_1d(model.midspan(np.concatenate(dense))),
             "y_m_quasistatic": np.tile(y_qs, periods),
         }
 
@@ -584,7 +584,7 @@ def quasistatic_midspan(model: DiscreteModel, taus: np.ndarray) -> tuple[np.ndar
     Returns
     -------
     theta : numpy.ndarray
-        Angles [rad], shape (n, m).
+        Angles [rad], shape (m, n).
     y_m : numpy.ndarray
         Midspan deflection in units of L, shape (m,).
     """
@@ -718,7 +718,7 @@ def _simulate_grid(
     phase = (dyn.tau / dl.period) % 1.0 * m
     idx = np.rint(phase).astype(int) % m
     if np.allclose(phase, np.rint(phase), atol=1e-6):
-        theta_qs, y_qs = th_qs1[:, idx], np.atleast_1d(y_qs1)[idx]
+        theta_qs, y_qs = th_qs1[idx], np.atleast_1d(y_qs1)[idx]
     else:
         theta_qs, y_qs = quasistatic_midspan(model, dyn.tau)
     y_dyn = OBSERVABLES["y_m"](model, scene.beam, States(dyn.tau, dyn.theta))

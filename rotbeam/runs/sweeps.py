@@ -193,7 +193,7 @@ def _neighbour(res: SceneResult, before: Neighbour | None) -> Neighbour | None:
     none, the orbit before it (None without either)."""
     orbit = res.dynamic.periodic
     if orbit is not None and orbit.converged:
-        return Neighbour(orbit.theta.T, res.scene.dimensionless.omega)
+        return Neighbour(orbit.theta, res.scene.dimensionless.omega)
     return before
 
 

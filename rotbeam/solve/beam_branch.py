@@ -131,7 +131,7 @@ class BeamBranchProblem(BranchProblem):
         """
         col = self.collocation(p)
         X = self._X(x)
-        return beam_floquet(col.model, X.T, (col.D @ X).T)
+        return beam_floquet(col.model, X, col.D @ X)
 
     def midspan(self, x: np.ndarray, p: float, samples: int = 64) -> np.ndarray:
         """The midspan deflection over one period, from the orbit's trigonometric interpolant.
@@ -151,7 +151,7 @@ class BeamBranchProblem(BranchProblem):
             y_m / L at those instants, shape (samples,).
         """
         col = self.collocation(p)
-        return np.atleast_1d(col.model.midspan(trig_interpolate(self._X(x), samples).T))
+        return np.atleast_1d(col.model.midspan(trig_interpolate(self._X(x), samples)))
 
 
 @dataclass
@@ -228,7 +228,7 @@ def start_orbit(
     res = solve_periodic_adaptive(at, M0=M0, tail_tol=tail_tol, M_max=M_max)
     if not res.converged:
         raise RuntimeError(f"no periodic orbit at f_d = {f_d:g} Hz to start from: {res.message}")
-    return BeamBranchProblem(at, T, res.M), res.theta.T.ravel(), res.harmonic_tail
+    return BeamBranchProblem(at, T, res.M), res.theta.ravel(), res.harmonic_tail
 
 
 def beam_branch(

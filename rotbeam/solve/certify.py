@@ -217,7 +217,7 @@ def window_stability(model: DiscreteModel, theta_one_period: np.ndarray) -> Floq
     model : DiscreteModel
         The model and its drive.
     theta_one_period : numpy.ndarray
-        Angles [rad] at m equispaced instants of the last drive period, shape (n, m).
+        Angles [rad] at m equispaced instants of the last drive period, shape (m, n).
 
     Returns
     -------
@@ -225,7 +225,7 @@ def window_stability(model: DiscreteModel, theta_one_period: np.ndarray) -> Floq
         The multipliers (`rotbeam.solve.floquet.sampled_beam_floquet`); None with fewer than 8
         samples.
     """
-    if theta_one_period.ndim != 2 or theta_one_period.shape[1] < 8:
+    if theta_one_period.ndim != 2 or theta_one_period.shape[0] < 8:
         return None
     return sampled_beam_floquet(model, theta_one_period)
 
@@ -283,7 +283,7 @@ def monodromy_certificate(
     fl : FloquetResult or None
         The orbit's multipliers, with the defect they carry.
     theta : numpy.ndarray
-        The orbit's angles [rad], shape (n, M): their largest |value| is the response's size.
+        The orbit's angles [rad], shape (M, n): their largest |value| is the response's size.
     ss_tol : float
         The steady-state tolerance (relative remaining transient).
     wref : float
@@ -524,7 +524,7 @@ def certify_window(
     periods : int
         Drive periods integrated in all.
     last_period : numpy.ndarray
-        Angles [rad] at the window's instants of its last drive period, shape (n, m).
+        Angles [rad] at the window's instants of its last drive period, shape (m, n).
 
     Returns
     -------

@@ -439,9 +439,9 @@ def beam_floquet(
         The model and its drive; the period is its `dl.period` (dimensionless, units of T).
     theta : numpy.ndarray
         Angles [rad] at M equispaced instants of the drive period, the first at tau = 0,
-        shape (n, M).
+        shape (M, n).
     theta_t : numpy.ndarray
-        Their rates d theta / d tau at the same instants, shape (n, M).
+        Their rates d theta / d tau at the same instants, shape (M, n).
     steps : int or None
         A fixed number of Magnus steps; None: the first try, then the ladder
         (`orbit_floquet`).
@@ -463,7 +463,7 @@ def beam_floquet(
         lam, lam_dot = model.drive_rows(t)
         return model.first_order_rows(Z[:, :n], Z[:, n:], lam, lam_dot)
 
-    Z = np.concatenate([theta, theta_t], axis=0).T
+    Z = np.concatenate([theta, theta_t], axis=1)
     return orbit_floquet(None, Z, dl.period, steps, None, rows, after, offset_atol, mu_tol)
 
 
@@ -481,7 +481,7 @@ def sampled_beam_floquet(
         The model and its drive (period `dl.period`, dimensionless).
     theta : numpy.ndarray
         Angles [rad] at m equispaced instants of one drive period, the first at a whole number
-        of periods, shape (n, m).
+        of periods, shape (m, n).
     steps : int or None
         A fixed number of Magnus steps; None: the first try, then the ladder.
 
@@ -490,8 +490,8 @@ def sampled_beam_floquet(
     FloquetResult
         The multipliers and the defect of the samples' interpolant.
     """
-    X, dl = theta.T, model.dl
+    X, dl = np.asarray(theta, dtype=float), model.dl
     if X.shape[0] % 2 == 0:  # an odd count: no Nyquist term, whose derivative is undefined
         X = trig_eval(X, dl.period, np.arange(X.shape[0] + 1) * dl.period / (X.shape[0] + 1))
     V = trig_eval(X, dl.period, np.arange(X.shape[0]) * dl.period / X.shape[0], derivative=1)
-    return beam_floquet(model, X.T, V.T, steps)
+    return beam_floquet(model, X, V, steps)

@@ -7,7 +7,9 @@ steppers (`rotbeam.solve.stepping`, `rotbeam.solve.lyapunov`) and a single move
 at the instants asked for by the interpolant of the step that ends at or after each (the rule of
 `solve_ivp`'s t_eval), counts the right-hand side and Jacobian evaluations and the steps, and
 says why it stopped short: the solver's failure, a state that is not finite, or the wall-time
-deadline (`OutOfTime` from the right-hand side).
+deadline (`OutOfTime` from the right-hand side).  The samples are returned instants first,
+shape (m, dim), the package's one convention (docs/numerics.md, "Array shapes"): the solver's
+dense output, states in columns, is turned here and nowhere else.
 """
 
 from __future__ import annotations
@@ -29,7 +31,7 @@ class Stepped:
     """What one `IvpInterval.run` stepped."""
 
     t: np.ndarray  #: the instants sampled (those the solver reached), shape (m,)
-    y: np.ndarray  #: the state at them, shape (dim, m)
+    y: np.ndarray  #: the state at them, shape (m, dim)
     end: np.ndarray  #: the solver's state where it stopped (at tb when `status` is REACHED)
     status: int  #: REACHED, FAILED or CUT
     message: str  #: '' when it reached tb, else why not
@@ -152,15 +154,15 @@ class IvpInterval:
         y : numpy.ndarray
             The solver's state at tb (where it stopped on a failure).
         samples : numpy.ndarray or None
-            y[:dim // 2] at t_eval[:-1], shape (dim // 2, t_eval.size - 1); None without t_eval
-            or on a failure.
+            y[:dim // 2] at t_eval[:-1], shape (t_eval.size - 1, dim // 2); None without
+            t_eval or on a failure.
         message : str
             '' on success, else why the step failed.
         """
         out = self.run(ta, tb, y, None if t_eval is None else t_eval[:-1])
         if out.status != REACHED or t_eval is None:
             return out.end, None, out.message
-        return out.end, out.y[: y.size // 2], ""
+        return out.end, out.y[:, : y.size // 2], ""
 
     def _solver(self, ta, tb, y, rtol, atol):
         """The scipy solver of this call, at its first instant."""
@@ -180,14 +182,14 @@ def _sample(solver, instants: np.ndarray, done: int, ts: list, ys: list) -> int:
     reach = int(np.searchsorted(instants, solver.t, side="right"))
     if reach > done:
         ts.append(instants[done:reach])
-        ys.append(solver.dense_output()(instants[done:reach]))
+        ys.append(solver.dense_output()(instants[done:reach]).T)  # (dim, k) -> (k, dim)
     return reach
 
 
 def _stepped(solver, y, ts: list, ys: list, status: int, message: str, steps: int) -> Stepped:
     """A call's result from its solver (None: the deadline passed before its first step)."""
     t = np.hstack(ts) if ts else np.zeros(0)
-    samples = np.hstack(ys) if ys else np.zeros((np.size(y), 0))
+    samples = np.vstack(ys) if ys else np.zeros((0, np.size(y)))
     if solver is None:
         return Stepped(t, samples, np.asarray(y, dtype=float), status, message, 0, 0, 0)
     end = solver.y

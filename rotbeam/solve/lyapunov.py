@@ -33,7 +33,7 @@ class LyapunovResult:
     section: np.ndarray  #: (intervals + 1, dim) states at t0 + k T (stroboscopic section)
     seconds: float  #: wall time of the run [s]
     message: str = ""  #: why it stopped early, else the number of intervals
-    samples: list[np.ndarray] = field(default_factory=list)  #: optional per-interval samples
+    samples: list[np.ndarray] = field(default_factory=list)  #: per interval, (k, dim) states
     late: float = math.nan  #: mean growth rate over the second half of the intervals
     late_spread: float = math.inf  #: |third quarter's rate - fourth quarter's|
 
@@ -91,7 +91,7 @@ def largest_lyapunov(
         Absolute tolerance of the state, scalar or shape (dim,); the tangent's is 1e-10.
     samples_per_interval : int
         With m > 0, the states at m equispaced instants of every interval are kept (for
-        spectra).
+        spectra), shape (m, dim) each.
     deadline : float or None
         A `time.perf_counter` value after which the run stops at the end of an interval.
     v0 : numpy.ndarray or None
@@ -200,7 +200,7 @@ def benettin_result(
     section : list of numpy.ndarray
         The states at the start and at the end of every interval, K + 1 of shape (dim,).
     samples : list of numpy.ndarray
-        Per-interval samples (may be empty).
+        Per-interval samples, shape (m, dim) each (may be empty).
     seconds : float
         Wall time of the run [s].
     msg : str

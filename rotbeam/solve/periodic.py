@@ -29,9 +29,9 @@ class PeriodicResult:
     """A collocated periodic orbit and how Newton got there (times in units of T, angles in
     rad)."""
 
-    tau: np.ndarray  #: collocation instants over one period
-    theta: np.ndarray  #: (N-1, M)
-    theta_t: np.ndarray  #: (N-1, M) d theta / d tau, the spectral derivative
+    tau: np.ndarray  #: (M,) collocation instants over one period
+    theta: np.ndarray  #: (M, n) the model's coordinates at the instants
+    theta_t: np.ndarray  #: (M, n) d theta / d tau, the spectral derivative
     converged: bool  #: Newton met its step tolerance
     iterations: int  #: Newton steps
     residual: float  #: max |R| at the last iterate
@@ -406,8 +406,8 @@ def solve_periodic(
     message = "singular collocation Jacobian" if res.message == "singular Jacobian" else res.message
     return PeriodicResult(
         tau=col.tau,
-        theta=res.x.T.copy(),
-        theta_t=(col.D @ res.x).T.copy(),
+        theta=res.x.copy(),
+        theta_t=col.D @ res.x,
         converged=res.converged,
         iterations=res.iterations,
         krylov_iterations=directions.krylov_iterations,
@@ -436,7 +436,7 @@ def refined(model: DiscreteModel, res: PeriodicResult, rtol: float = 1e-10) -> P
         The orbit on 2M - 1 instants.
     """
     M = 2 * res.M - 1
-    return solve_periodic(model, M, guess=trig_interpolate(res.theta.T, M), rtol=rtol)
+    return solve_periodic(model, M, guess=trig_interpolate(res.theta, M), rtol=rtol)
 
 
 def _amplitude_continuation(model: DiscreteModel, M: int, rtol: float, steps: int = 6):
@@ -448,7 +448,7 @@ def _amplitude_continuation(model: DiscreteModel, M: int, rtol: float, steps: in
         res = solve_periodic(scaled, M, guess=X, rtol=rtol)
         if not res.converged:
             return None
-        X = res.theta.T
+        X = res.theta
     res.message += f" (amplitude continuation in {steps} steps)"
     return res
 
@@ -509,7 +509,7 @@ def continued(model: DiscreteModel, seed: Neighbour, M0: int, rtol: float) -> Pe
             res = solve_periodic(at, M, guess=X, rtol=rtol, maxiter=SUBSTEP_MAXITER)
             if not res.converged:
                 break
-            X, w = res.theta.T, target
+            X, w = res.theta, target
             if target == omega:
                 return res
         step /= 2.0
@@ -521,7 +521,7 @@ def _on(model: DiscreteModel, res: PeriodicResult, M0: int, rtol: float) -> Peri
     Newton does not converge there (M0 does not resolve it)."""
     if res.M == M0:
         return res
-    coarse = solve_periodic(model, M0, guess=trig_interpolate(res.theta.T, M0), rtol=rtol)
+    coarse = solve_periodic(model, M0, guess=trig_interpolate(res.theta, M0), rtol=rtol)
     return coarse if coarse.converged else res
 
 

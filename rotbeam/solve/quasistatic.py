@@ -247,7 +247,7 @@ def quasistatic_series(model: DiscreteModel, taus: np.ndarray, rtol: float = 1e-
     Returns
     -------
     numpy.ndarray
-        Angles, shape (n, m).
+        Angles, shape (m, n).
 
     Raises
     ------
@@ -259,8 +259,8 @@ def quasistatic_series(model: DiscreteModel, taus: np.ndarray, rtol: float = 1e-
     if taus.size:
         fast = batched_static(model, lam, lam_dot, rtol)
         if fast is not None:
-            return fast.T.copy()
-    out = np.empty((model.n, taus.size))
+            return fast
+    out = np.empty((taus.size, model.n))
     theta = None
     tau_prev = None
     for j, tau in enumerate(taus):
@@ -273,7 +273,7 @@ def quasistatic_series(model: DiscreteModel, taus: np.ndarray, rtol: float = 1e-
                 f"(lam={lam[j]:.6g}, lam_dot={lam_dot[j]:.6g}): {res.message}"
             )
         theta, tau_prev = res.theta, tau
-        out[:, j] = theta
+        out[j] = theta
     return out
 
 

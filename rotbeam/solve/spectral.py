@@ -116,16 +116,20 @@ def harmonic_tail(X: np.ndarray) -> float:
     return float(np.sqrt(np.sum(C[k // 2 :] ** 2)) / total)
 
 
-def periodic_rates(theta: np.ndarray, period: float) -> tuple[np.ndarray, np.ndarray]:
+def periodic_rates(
+    theta: np.ndarray, period: float, axis: int = 0
+) -> tuple[np.ndarray, np.ndarray]:
     """Rates and accelerations of a periodic series, spectrally (the derivative of its
     trigonometric interpolant; an even count's Nyquist harmonic is dropped).
 
     Parameters
     ----------
     theta : numpy.ndarray
-        m equispaced samples of one period along the last axis, shape (..., m).
+        m equispaced samples of one period along `axis`: shape (m, ...) for axis 0.
     period : float
         The period, in units of T.
+    axis : int
+        The axis of the instants.
 
     Returns
     -------
@@ -133,11 +137,12 @@ def periodic_rates(theta: np.ndarray, period: float) -> tuple[np.ndarray, np.nda
         d/dtau and d^2/dtau^2, the shape of `theta`.
     """
     theta = np.asarray(theta, dtype=float)
-    m = theta.shape[-1]
-    C = np.fft.rfft(theta, axis=-1)
-    w = 2.0 * math.pi / period * np.arange(C.shape[-1])
+    m = theta.shape[axis]
+    C = np.fft.rfft(theta, axis=axis)
+    w = 2.0 * math.pi / period * np.arange(C.shape[axis])
     if m % 2 == 0:
         w[-1] = 0.0
-    first = np.fft.irfft(1j * w * C, n=m, axis=-1)
-    second = np.fft.irfft(-(w**2) * C, n=m, axis=-1)
+    w = np.expand_dims(w, tuple(range(1, theta.ndim - axis % theta.ndim)))
+    first = np.fft.irfft(1j * w * C, n=m, axis=axis)
+    second = np.fft.irfft(-(w**2) * C, n=m, axis=axis)
     return first, second

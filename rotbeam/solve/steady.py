@@ -43,7 +43,7 @@ class SteadyState:
     """
 
     tau: np.ndarray  #: sample instants (whole periods, endpoint excluded)
-    theta: np.ndarray  #: (n, m) the model's coordinates at the samples (the elastica's: its angles)
+    theta: np.ndarray  #: (m, n) the model's coordinates at the samples (the elastica's: its angles)
     converged: bool  #: status == 0: a verified, stable steady state
     status: int  #: 0 steady, 1 no steady state within budget, 2 only an unstable orbit, -1 failure
     message: str  #: how the state was reached, or why not
@@ -94,7 +94,7 @@ def window_samples(dl: Dimensionless, num: Numerics, periodic: PeriodicResult | 
     """
     k = dl.law.highest_harmonic
     if periodic is not None and periodic.converged:
-        k = max(k, highest_harmonic(periodic.theta.T, num.tail_tol))
+        k = max(k, highest_harmonic(periodic.theta, num.tail_tol))
     need = SAMPLES_PER_HARMONIC * k
     if need <= num.samples_per_period:
         return num.samples_per_period
@@ -161,7 +161,7 @@ def initial_state(
         seed = as_neighbour(guess, dl.omega)
         res = solve_periodic_adaptive(model, tail_tol=tail_tol, guess=seed)
         if res.converged:
-            return np.concatenate([res.theta[:, 0], res.theta_t[:, 0]]), res
+            return np.concatenate([res.theta[0], res.theta_t[0]]), res
         start = "quasistatic"  # fall back to a physical state; the time stepping still decides
     if start == "linear":
         theta, rate = np.zeros(n), np.zeros(n)  # Theta and Theta_t at tau = 0
@@ -170,7 +170,7 @@ def initial_state(
         return np.concatenate([theta, rate]), None
     h = dl.period * 1e-4
     th = quasistatic_series(model, np.array([-h, 0.0, h]))
-    return np.concatenate([th[:, 1], (th[:, 2] - th[:, 0]) / (2 * h)]), None
+    return np.concatenate([th[1], (th[2] - th[0]) / (2 * h)]), None
 
 
 def starting_state(
@@ -258,10 +258,10 @@ def collocation_window(
     tau : numpy.ndarray
         `rms_periods` periods of m = `window_samples` instants from tau = 0, shape (p m,).
     theta : numpy.ndarray
-        The orbit's angles [rad] there, shape (n, p m).
+        The orbit's angles [rad] there, shape (p m, n).
     """
     m, p = window_samples(dl, num, res), num.rms_periods
-    return period_samples(dl, 0, p, m), np.tile(trig_interpolate(res.theta.T, m).T, (1, p))
+    return period_samples(dl, 0, p, m), np.tile(trig_interpolate(res.theta, m), (p, 1))
 
 
 def _orbit_state(
@@ -282,7 +282,7 @@ def _orbit_state(
         seconds=time.perf_counter() - t0,
         periodic=res,
         floquet=orbit.floquet,
-        state=np.concatenate([res.theta[:, 0], res.theta_t[:, 0]]) if orbit.status == 0 else None,
+        state=np.concatenate([res.theta[0], res.theta_t[0]]) if orbit.status == 0 else None,
         samples_per_period=window_samples(model.dl, num, res),
     )
 
@@ -500,7 +500,7 @@ class March:
     """Where `march` stopped and why."""
 
     z: np.ndarray  #: state after the last whole period
-    last: tuple[np.ndarray, np.ndarray]  #: (tau, Theta) samples of the last period seen
+    last: tuple[np.ndarray, np.ndarray]  #: (tau (m,), Theta (m, n)) of the last period seen
     status: int = 1  #: 0 steady, 1 no steady state within the budget, -1 integrator failure
     message: str = ""
     k: int = 0  #: whole periods integrated
@@ -548,7 +548,7 @@ def march(
     max_periods = min(num.max_periods, max(2, int(num.max_tau / P)))
     if not stepper.model.damped:  # no transient ever decays: show a few periods and say so
         max_periods = min(max_periods, max(2, p))
-    out = March(z=z, last=(np.array([0.0]), z[:n, None].copy()))
+    out = March(z=z, last=(np.array([0.0]), z[None, :n].copy()))
     while out.k < max_periods:
         k = out.k
         t_eval = np.append(period_samples(dl, k, 1, m), (k + 1) * P)
@@ -559,10 +559,10 @@ def march(
         if sol.status == FAILED:
             out.status, out.message = -1, f"integrator failed in period {k + 1}: {sol.message}"
             return out
-        out.last = (sol.t[:-1], sol.y[:n, :-1])
-        z_new = sol.y[:, -1]
+        out.last = (sol.t[:-1], sol.y[:-1, :n])
+        z_new = sol.y[-1]
         out.k = k = k + 1
-        size = max(float(np.max(np.abs(sol.y[:n]))), 1e-300)
+        size = max(float(np.max(np.abs(sol.y[:, :n]))), 1e-300)
         d = max(
             float(np.max(np.abs(z_new[:n] - out.z[:n]))),
             float(np.max(np.abs(z_new[n:] - out.z[n:]))) / tol.wref,
@@ -593,8 +593,8 @@ def march(
 class Window:
     """The RMS window: samples, and the march's outcome as the window leaves it."""
 
-    tau: np.ndarray
-    theta: np.ndarray
+    tau: np.ndarray  #: (m,) the instants
+    theta: np.ndarray  #: (m, n) the model's coordinates at them
     status: int
     message: str
     periods: int  #: drive periods integrated in all
@@ -643,7 +643,7 @@ def rms_window(
     if run.reusable:
         return Window(
             np.concatenate([w[0] for w in run.window]),
-            np.concatenate([w[1] for w in run.window], axis=1),
+            np.concatenate([w[1] for w in run.window]),
             0,
             run.message + f" (RMS window: the last {p} of them)",
             k,
@@ -656,7 +656,7 @@ def rms_window(
         return Window(*run.last, 1, msg, k, m)
     if sol.status == FAILED:
         return Window(*run.last, -1, f"integrator failed in the RMS window: {sol.message}", k, m)
-    return Window(taus, sol.y[:n], 0, run.message, k + p, m)
+    return Window(taus, sol.y[:, :n], 0, run.message, k + p, m)
 
 
 def steady_state(
@@ -735,14 +735,14 @@ def steady_state(
         return _orbit_state(model, num, orbit, t0)
     periodic, from_orbit = orbit.periodic, orbit.on_orbit
     if from_orbit:
-        z = np.concatenate([periodic.theta[:, 0], periodic.theta_t[:, 0]])
+        z = np.concatenate([periodic.theta[0], periodic.theta_t[0]])
     tol = tolerances(model, num, z, response_scale, periodic, from_orbit)
     z = orbit.march_start(z, tol.scale)
     stepper = TransientStepper(model, num, tol, budget, window_samples(model.dl, num, periodic))
     run = march(stepper, z, from_orbit, progress)
     win = rms_window(stepper, run, periodic, from_orbit)
     verdict = certify_window(
-        model, num, orbit, win.status, win.message, win.periods, win.theta[:, -win.samples :]
+        model, num, orbit, win.status, win.message, win.periods, win.theta[-win.samples :]
     )
     return SteadyState(
         tau=win.tau,
@@ -769,7 +769,7 @@ def _collocation_cut(model: DiscreteModel, budget: TimeBudget, t0: float) -> Ste
     where = f"the collocation at {model.label}"
     return SteadyState(
         tau=np.zeros(1),
-        theta=np.zeros((model.n, 1)),
+        theta=np.zeros((1, model.n)),
         converged=False,
         status=1,
         message=f"no steady state: {budget.cut(where)}, before any time stepping",

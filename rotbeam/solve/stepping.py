@@ -97,7 +97,7 @@ class PeriodStepper(ABC):
         y : numpy.ndarray
             (z, v) at tb.
         samples : numpy.ndarray or None
-            The state at t_eval[:-1], shape (2 n, t_eval.size - 1); None without t_eval.
+            The state at t_eval[:-1], shape (t_eval.size - 1, 2 n); None without t_eval.
         message : str
             '' on success, else why the step failed.
         """
@@ -232,7 +232,7 @@ class CompiledStepper(PeriodStepper):
             stops = np.concatenate([[ta], stops])
         y_end, saved, msg = self._advance(stops, y, True)
         rows = saved if lead else np.vstack([np.asarray(y, dtype=float)[None], saved])
-        return y_end, rows[:-1, : y_end.size // 2].T, msg  # the state at t_eval[:-1]
+        return y_end, rows[:-1, : y_end.size // 2], msg  # the state at t_eval[:-1]
 
 
 class SwitchingStepper(PeriodStepper):
