@@ -98,7 +98,7 @@ def test_command_line_and_api_give_the_same_rows(by_api, tmp_path):
 
 
 def test_a_cut_atlas_says_which_lines_and_points_it_reached(monkeypatch, tmp_path):
-    """The atlas's budget (numerics.max_seconds) spent after its first line: that line's rows
+    """The atlas's budget (numerics.max_seconds) spent by its first line: that line's rows
     are answers, the other lines' rows are there, marked not run (status NOT_RUN, NaN, the
     reason), and the message and the exit status say where the budget cut it."""
     real = rotbeam.runs.atlas.run_line
@@ -106,7 +106,7 @@ def test_a_cut_atlas_says_which_lines_and_points_it_reached(monkeypatch, tmp_pat
 
     def slow_first_line(scene, omega0, f_ds, time_budget=None, progress=None):
         line = real(scene, omega0, f_ds, time_budget, progress)
-        time.sleep(max(0.0, time_budget.remaining()) + 0.01)  # the whole budget is spent here
+        time.sleep(budget)  # the atlas's whole budget is spent here
         return line
 
     monkeypatch.setattr(rotbeam.runs.atlas, "run_line", slow_first_line)
@@ -126,6 +126,27 @@ def test_a_cut_atlas_says_which_lines_and_points_it_reached(monkeypatch, tmp_pat
     assert "line 2 (Omega_0 = 10 rad/s): 0 of 3 points answered, 0 cut short, 3 not run" in text
     assert "line 3 (Omega_0 = 15 rad/s): 0 of 3 points answered, 0 cut short, 3 not run" in text
     assert "line 1 " not in text
+
+
+def test_each_line_gets_its_share_of_what_is_left(monkeypatch):
+    """A line may spend what is left of the atlas's budget times the workers over the lines
+    left, so that one line with a hard point cannot take the whole atlas's (one worker, four
+    lines: a quarter, then a third of what is left, ...)."""
+    shares = []
+    real = rotbeam.runs.atlas.run_line
+
+    def recording(scene, omega0, f_ds, time_budget=None, progress=None):
+        shares.append((time.time(), time_budget.seconds))
+        return real(scene, omega0, f_ds, time_budget, progress)
+
+    monkeypatch.setattr(rotbeam.runs.atlas, "run_line", recording)
+    total = 600.0
+    start = time.time()
+    a = rotbeam.atlas(scene(max_seconds=total), [5.0, 10.0, 15.0, 20.0], [1.0, 2.0], workers=1)
+    assert a.complete and len(shares) == 4
+    for k, (at, seconds) in enumerate(shares):
+        left = total - (at - start)
+        assert seconds == pytest.approx(left / (4 - k), rel=1e-3), (k, seconds, left)
 
 
 def test_a_budget_spent_before_any_line_leaves_every_row_marked():

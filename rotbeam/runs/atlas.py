@@ -323,8 +323,11 @@ def run_atlas(
     """Every (Omega_0, f_d) of the grid omega0s x f_ds: one sweep line per Omega_0, the lines
     spread over `workers` processes; `numerics.max_seconds` bounds the whole atlas.
 
-    A line starts with what is left of the atlas's budget and the sweep shares that among its
-    points; a line that starts after the budget is spent does not run.  Every grid point has a
+    A line may spend what is left of the atlas's budget times `workers` over the lines left
+    (itself included; all that is left for the last `workers` lines), and the sweep shares that
+    among its points, so that a line with a point without a steady state (time stepping to the
+    end of its share) takes its share, not the atlas's; a line that starts after the budget is
+    spent does not run.  Every grid point has a
     row: a point not reached is marked (`ran` False, status `NOT_RUN`, the cut in `message`).
 
     Parameters
@@ -359,7 +362,8 @@ def run_atlas(
         raise RotbeamInputError(f"workers = {workers!r}: allowed: an integer >= 1")
     total = scene.numerics.max_seconds
     deadline = time.time() + total
-    tasks = [(i, scene, float(w), f_ds, deadline, total) for i, w in enumerate(omega0s)]
+    tasks = [(i, scene, float(w), f_ds, deadline, total, len(omega0s), int(workers))
+             for i, w in enumerate(omega0s)]  # fmt: skip
     t0 = time.perf_counter()
     if workers == 1:
         done = [_line_task(t, progress) for t in tasks]
@@ -383,10 +387,14 @@ def run_atlas(
 def _line_task(task: tuple, progress: Progress | None = None) -> tuple[Sweep | None, str]:
     """Run one line within what is left of the atlas's budget: (its sweep, why its points not
     run were not run); (None, why) when the budget was spent before it started."""
-    index, scene, omega0, f_ds, deadline, total = task
+    index, scene, omega0, f_ds, deadline, total, lines, workers = task
     left = deadline - time.time()
     if left <= 0:
         return None, f"the atlas's time budget of {total:.3g} s was spent before this line began"
+    # the line's share: the lines from this one on run `workers` at a time, so each may take
+    # what is left times workers / lines left (a line with a hard point takes its share, not
+    # the atlas's; the last `workers` lines may take all that is left)
+    left *= min(1.0, workers / (lines - index))
     report = _QUEUE.put if _QUEUE is not None else None
 
     def point(k: int, row: dict) -> None:
