@@ -1,8 +1,9 @@
 """rotbeam: is a quasi-static model good enough for a cantilevered beam on a rotating disk?
 
 The public API: the scene (`Beam`, `Drive`, `Effects`, `Numerics`, `Scene`, `load_scene`,
-`build_scene`), its answers (`simulate`, `judge`, `critical`, `effect_budget`, `modes`) and
-`__version__`.  The names load their modules on first use, so `import rotbeam` is quick.
+`build_scene`), its answers (`simulate`, `judge`, `critical`, `effect_budget`, `modes`), the
+atlas of the phase plane (`atlas`, `Atlas`, `plot_atlas`) and `__version__`.
+The names load their modules on first use, so `import rotbeam` is quick.
 """
 
 from importlib import import_module
@@ -32,6 +33,9 @@ _HOMES = {
     "effect_budget": "rotbeam.analysis.effect_budget",
     "EffectBudget": "rotbeam.analysis.effect_budget",
     "modes": "rotbeam.model.modes",
+    "atlas": "rotbeam.analysis.atlas",
+    "Atlas": "rotbeam.analysis.atlas",
+    "plot_atlas": "rotbeam.report.atlas_figure",
     "RotbeamInputError": "rotbeam.config.errors",
 }
 

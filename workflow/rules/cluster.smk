@@ -23,3 +23,4 @@ localrules:
     surrogate_southwell,
     surrogate_vs_full,
     versions,
+    atlas_gather,
