@@ -453,6 +453,30 @@ def _amplitude_continuation(model: DiscreteModel, M: int, rtol: float, steps: in
     return res
 
 
+#: where a scene's own start and the amplitude continuation fail (next to a resonance peak),
+#: its orbit is reached as an upward sweep reaches it: solved at the first of these fractions
+#: of its drive frequency and continued through the others to its own
+FREQUENCY_PATH = (0.9, 0.95, 0.98)
+
+
+def _frequency_continuation(
+    model: DiscreteModel, M0: int, tail_tol: float, M_max: int, rtol: float
+) -> PeriodicResult | None:
+    """The orbit continued in the drive frequency from below, along `FREQUENCY_PATH` (each
+    step `solve_periodic_adaptive` from the previous orbit, as a sweep's points); None where a
+    step does not converge."""
+    dl = model.dl
+    seed = None
+    for fraction in (*FREQUENCY_PATH, 1.0):
+        at = model if fraction == 1.0 else model.at(replace(dl, omega=fraction * dl.omega))
+        res = solve_periodic_adaptive(at, M0, tail_tol, M_max, rtol, guess=seed, from_below=False)
+        if not res.converged:
+            return None
+        seed = Neighbour(res.theta, at.dl.omega)
+    res.message += f" (continued in the frequency from {FREQUENCY_PATH[0]:g} f_d)"
+    return res
+
+
 #: the frequency substeps of `continued`: the step from the neighbour is halved, at most this
 #: many times (down to 1/16 of it), while Newton fails
 SUBSTEP_HALVINGS = 4
@@ -532,6 +556,7 @@ def solve_periodic_adaptive(
     M_max: int = 129,
     rtol: float = 1e-10,
     guess: np.ndarray | Neighbour | None = None,
+    from_below: bool = True,
 ) -> PeriodicResult:
     """`solve_periodic` with M refined (2M - 1) until the harmonic tail is below `tail_tol`.
 
@@ -555,7 +580,11 @@ def solve_periodic_adaptive(
     guess : numpy.ndarray, Neighbour or None
         An orbit (M', n) of a neighbouring scene, or a `Neighbour`: continuation
         (`continued`); where no continued orbit converges and refines, the scene is solved
-        as without a guess: from the linear guess, then by continuation in the amplitude.
+        as without a guess: from the linear guess, then by continuation in the amplitude,
+        then in the frequency from below (`FREQUENCY_PATH`).
+    from_below : bool
+        Whether a scene solved alone may be reached by continuation in the frequency (False
+        on the path of that continuation itself).
 
     Returns
     -------
@@ -581,7 +610,9 @@ def solve_periodic_adaptive(
             finer, resolved = resolved, None
         res = finer
     if not res.converged and not alone:  # the continued orbit did not refine: solve alone
-        return solve_periodic_adaptive(model, M0, tail_tol, M_max, rtol)
+        return solve_periodic_adaptive(model, M0, tail_tol, M_max, rtol, from_below=from_below)
+    if not res.converged and alone and from_below:  # next to a resonance peak
+        res = _frequency_continuation(model, M0, tail_tol, M_max, rtol) or res
     if res.converged and res.harmonic_tail > tail_tol:
         res.message += f"; harmonic tail {res.harmonic_tail:.2g} > {tail_tol:g} at M={res.M}"
     return res
