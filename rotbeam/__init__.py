@@ -1,8 +1,9 @@
 """rotbeam: is a quasi-static model good enough for a cantilevered beam on a rotating disk?
 
 The public API: the scene (`Beam`, `Drive`, `Effects`, `Numerics`, `Scene`, `load_scene`,
-`build_scene`), its answers (`simulate`, `judge`, `critical`, `effect_budget`, `modes`) and
-`__version__`.  The names load their modules on first use, so `import rotbeam` is quick.
+`build_scene`), its answers (`simulate`, `judge`, `critical`, `effect_budget`, `modes`,
+`design_move`) and `__version__`.  The names load their modules on first use, so
+`import rotbeam` is quick.
 """
 
 from importlib import import_module
@@ -32,6 +33,8 @@ _HOMES = {
     "effect_budget": "rotbeam.analysis.effect_budget",
     "EffectBudget": "rotbeam.analysis.effect_budget",
     "modes": "rotbeam.model.modes",
+    "design_move": "rotbeam.analysis.move_design",
+    "MoveDesign": "rotbeam.analysis.move_design",
     "RotbeamInputError": "rotbeam.config.errors",
 }
 

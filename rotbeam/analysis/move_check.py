@@ -8,7 +8,7 @@ repeats the run) and time-stepped from rest by `rotbeam.runs.move.simulate_move`
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
@@ -44,6 +44,12 @@ class MoveCheck:
         The run's message.
     seconds : float
         Its wall time.
+    t_s : numpy.ndarray
+        Sample instants from the start of the move [s].
+    values : numpy.ndarray
+        The observable there.
+    omega : numpy.ndarray
+        Omega there [rad/s].
     """
 
     duration_s: float
@@ -52,6 +58,9 @@ class MoveCheck:
     converged: bool
     message: str
     seconds: float
+    t_s: np.ndarray = field(default_factory=lambda: np.zeros(0), repr=False)
+    values: np.ndarray = field(default_factory=lambda: np.zeros(0), repr=False)
+    omega: np.ndarray = field(default_factory=lambda: np.zeros(0), repr=False)
 
     def as_dict(self) -> dict[str, float]:
         """``duration_s``, ``residual``, ``peak``.
@@ -135,14 +144,15 @@ def check_move(
         sc = replace(sc, numerics=replace(sc.numerics, max_seconds=max(max_seconds, 1e-3)))
     res = simulate_move(sc)
     if observable == "y_m":
-        residual, peak = res.residual_ym, res.peak_ym
+        residual, peak, values = res.residual_ym, res.peak_ym, res.y_dynamic
     else:
         obs = res.observables([observable])[observable]
         residual, peak = obs["residual"], obs["peak_dynamic"]
+        values = res.series(observable)
     if not res.converged:
         residual = math.nan
     return MoveCheck(motion.duration, float(residual), float(peak), res.converged, res.message,
-                     res.seconds)  # fmt: skip
+                     res.seconds, res.t_s, values, res.omega)  # fmt: skip
 
 
 def integrated_angle(t: np.ndarray, omega: np.ndarray) -> float:

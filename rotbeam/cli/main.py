@@ -31,6 +31,7 @@ COMMANDS = {
     "bench": "bench",
     "damping": "damping",
     "identify": "identify",
+    "design-move": "design",
 }
 
 #: exit status of a fit that ran but cannot be trusted (the message says why)
