@@ -33,9 +33,13 @@ from .shapers import KINDS, for_mode, shape, shaper
 #: modes of the inner model (the modal reduced model; 2 modes: within 1e-4 L of the full
 #: model's residual on the reference beam, docs/design.md)
 INNER_MODES = 2
-#: first-mode periods run after each candidate on the inner model, and after each baseline
+#: first-mode periods run after each candidate on the inner model, and after the design's and
+#: the baselines' full-model runs (the residual decays: its largest value comes in the first)
 INNER_SETTLE_PERIODS = 1.5
-BASELINE_SETTLE_PERIODS = 2.0
+CHECK_SETTLE_PERIODS = 2.0
+#: the inner model's stepper tolerance (at most; the scene's if looser): its residual moves by
+#: 1e-5 L from numerics.rtol = 1e-5 at half the cost (docs/design.md)
+INNER_RTOL = 1e-4
 #: without a jerk limit the design's acceleration ramps over this share of the shortest
 #: first-mode period (a step rings every mode of the beam and costs the stepper 20x more); the
 #: longer ramps last one period of the second mode, whose spectrum vanishes there
@@ -45,7 +49,7 @@ INNER_MARGIN = 0.5
 #: the spacing searched from (1 - BRACKET) to (1 + BRACKET) times the half periods met
 BRACKET = 0.2
 #: the spacing's resolution, a share of the half period
-XTOL = 2e-4
+XTOL = 5e-4
 #: evaluations of one family's minimisation and of its shortest-spacing root, at most
 MAX_MINIMISE = 24
 MAX_ROOT = 12
@@ -104,6 +108,9 @@ class MoveDesign:
         speed) and its damping ratio.
     evaluations : list of Evaluation
         Every candidate run on the inner model, in order.
+    settle_s : float
+        Seconds run after each move on the full model (`rotbeam simulate --move FILE --settle
+        settle_s` repeats the design's run).
     seconds : float
         Wall time of the search, the full-model checks of the design included (baselines not).
     baseline_seconds : float
@@ -132,6 +139,7 @@ class MoveDesign:
     seconds: float = 0.0
     baseline_seconds: float = 0.0
     profile_csv: str | None = None
+    settle_s: float = math.nan
 
     @property
     def duration_s(self) -> float:
@@ -183,8 +191,8 @@ class MoveDesign:
             ``angle_rad`` (integrated), ``robust_residual`` (worst over the box, or None),
             ``profile_csv``, ``seconds`` (the search's), ``found``, ``message``,
             ``observable``, ``tolerance``, ``family``, ``spacing_s``, ``kappa``, ``f_hz``,
-            ``zeta``, ``evaluations``, ``baseline_seconds`` and ``baselines``: {rigid, zv,
-            zvd} each with ``duration_s``, ``residual``, ``peak``, ``meets`` and
+            ``zeta``, ``evaluations``, ``baseline_seconds``, ``settle_s`` and ``baselines``:
+            {rigid, zv, zvd} each with ``duration_s``, ``residual``, ``peak``, ``meets`` and
             ``shorter_by`` (the design's saving, None where the baseline misses).
         """
         check = self.check
@@ -210,6 +218,7 @@ class MoveDesign:
             "zeta": self.zeta,
             "evaluations": len(self.evaluations),
             "baseline_seconds": self.baseline_seconds,
+            "settle_s": self.settle_s,
             "baselines": {
                 name: b.as_dict() | {"meets": bool(b.residual <= tol), "shorter_by": shorter[name]}
                 for name, b in self.baselines.items()
@@ -375,6 +384,7 @@ class _Search:
         scenes = [scene] + [s for _, s in boxed]
         freqs = [first_mode(s, w)[0] for s in scenes for w in ends]
         self.f_lo, self.f_hi = min(freqs), max(freqs)
+        self.settle_s = CHECK_SETTLE_PERIODS / self.f_lo
         self.inner_scenes = [self._inner_scene(s) for s in scenes[1:]] or [self._inner_scene(scene)]
         self.cache: dict[tuple[str, float, float], Evaluation] = {}
         self.evaluations: list[Evaluation] = []
@@ -430,11 +440,10 @@ class _Search:
     # --- runs ------------------------------------------------------------------------------
     def _inner_scene(self, scene: Scene) -> Scene:
         """The scene on the inner model: its modal reduced model of INNER_MODES modes."""
-        num = scene.numerics
-        if num.model == "modal":
-            return scene
-        return replace(scene, numerics=replace(num, model="modal",
-                                               modes=min(INNER_MODES, num.N - 1)))  # fmt: skip
+        num = replace(scene.numerics, rtol=max(scene.numerics.rtol, INNER_RTOL))
+        if num.model != "modal":
+            num = replace(num, model="modal", modes=min(INNER_MODES, num.N - 1))
+        return replace(scene, numerics=num)
 
     def _remaining(self) -> float:
         left = self.budget.remaining()
@@ -479,11 +488,10 @@ class _Search:
                 f"{peak:.3g}); allowed >= {floor:.3g}, or a smaller numerics.rtol"
             )
 
-    def full(self, motion: Motion, scene: Scene | None = None,
-             settle: float | None = None) -> MoveCheck:  # fmt: skip
-        """A move on the full model at the scene's grid."""
+    def full(self, motion: Motion, scene: Scene | None = None) -> MoveCheck:
+        """A move on the full model at the scene's grid, CHECK_SETTLE_PERIODS after it."""
         sc = scene if scene is not None else self.scene
-        c = check_move(sc, motion, self.f_hi, self.observable, settle, self._remaining())
+        c = check_move(sc, motion, self.f_hi, self.observable, self.settle_s, self._remaining())
         if not c.converged and self.budget.spent():
             raise _Cut
         if self.progress is not None:
@@ -494,7 +502,8 @@ class _Search:
     def design(self) -> MoveDesign:
         """Each family in turn, shortest first: the spacing of least inner residual, then the
         shortest spacing within INNER_MARGIN of the tolerance, checked on the full model."""
-        out = MoveDesign(False, "", self.scene, self.request, f_hz=self.f_hz, zeta=self.zeta)
+        out = MoveDesign(False, "", self.scene, self.request, f_hz=self.f_hz, zeta=self.zeta,
+                         settle_s=self.settle_s)  # fmt: skip
         best: float | None = None  # the least full-model residual so far
         try:
             for kind, ramp in self.families:
@@ -540,9 +549,8 @@ class _Search:
         if not self.boxed:
             return True
         corner = {}
-        settle = INNER_SETTLE_PERIODS / self.f_lo
         for label, sc in self.boxed:
-            corner[label] = self.full(motion, sc, settle).residual
+            corner[label] = self.full(motion, sc).residual
             if corner[label] > self.tol:
                 break
         if max(corner.values()) <= self.tol or out.robust_residual is None:
@@ -605,10 +613,9 @@ class _Search:
         motions = {"rigid": rigid}
         for kind in KINDS:
             motions[kind] = shape(rigid, for_mode(kind, self.f_hz, self.zeta))
-        settle = BASELINE_SETTLE_PERIODS / self.f_lo
         out = {}
         for name, m in motions.items():
-            c = check_move(self.scene, m, self.f_hi, self.observable, settle)
+            c = check_move(self.scene, m, self.f_hi, self.observable, self.settle_s)
             if self.progress is not None:
                 self.progress(f"baseline {name}: T {m.duration:.4g} s, residual {c.residual:.3g}")
             out[name] = c
