@@ -28,6 +28,7 @@ include: "workflow/rules/cluster.smk"
 include: "workflow/rules/c_hypotheses.smk"
 include: "workflow/rules/nonlinear.smk"
 include: "workflow/rules/scenes.smk"
+include: "workflow/rules/moves.smk"
 
 
 rule all:

@@ -181,6 +181,25 @@ class MoveDesign:
         return {name: (1.0 - self.duration_s / b.duration_s if b.residual <= tol else None)
                 for name, b in self.baselines.items()}  # fmt: skip
 
+    def rows(self) -> list[dict[str, Any]]:
+        """One row per move, the design first and then each baseline: a table's rows.
+
+        Returns
+        -------
+        list of dict
+            ``move`` (designed, rigid, zv, zvd), ``duration_s``, ``residual``, ``peak`` (full
+            model), ``meets`` (the tolerance) and ``shorter_by`` (the design's saving over a
+            baseline that meets it; None otherwise and on the design's row).
+        """
+        shorter = self.shorter_than()
+        tol = self.request["residual"]
+        runs = {"designed": self.check} | self.baselines
+        return [{"move": name, "duration_s": self.duration_s if name == "designed"
+                 else c.duration_s, "residual": c.residual if c else math.nan,
+                 "peak": c.peak if c else math.nan,
+                 "meets": bool(c is not None and c.residual <= tol),
+                 "shorter_by": shorter.get(name)} for name, c in runs.items()]  # fmt: skip
+
     def summary(self) -> dict[str, Any]:
         """The design's numbers for tables and JSON.
 
@@ -322,6 +341,48 @@ def design_move(
         design.baselines, design.baseline_motions = run.baselines()
         design.baseline_seconds = time.perf_counter() - t1
     return design
+
+
+#: the keys of one `move_designs` entry of the workflow's config beside name and scene
+DESIGN_KEYS = ("angle", "omega_start", "omega_end", "max_speed", "max_accel", "max_jerk",
+               "residual", "observable", "robust")  # fmt: skip
+
+
+def design_spec(spec: dict[str, Any], base: str | Path = ".") -> tuple[str, Scene, dict]:
+    """One entry of the workflow's `move_designs` list: its name, scene and request.
+
+    Parameters
+    ----------
+    spec : dict
+        ``name``, ``scene`` (optional: sections beam, effects, numerics as in a scene file) and
+        the keys of `design_move` (DESIGN_KEYS).
+    base : str or Path
+        The folder relative file paths of the scene start from.
+
+    Returns
+    -------
+    name : str
+    scene : Scene
+    request : dict
+        Keyword arguments of `design_move`.
+
+    Raises
+    ------
+    RotbeamInputError
+        One line for a missing name or an unknown key.
+    """
+    spec = dict(spec)
+    name = spec.pop("name", None)
+    if not isinstance(name, str) or not name:
+        raise RotbeamInputError(f"move_designs: an entry without a name: {spec!r}")
+    extra = sorted(set(spec) - set(DESIGN_KEYS) - {"scene"})
+    if extra:
+        raise RotbeamInputError(
+            f"move_designs {name}: unknown key {extra[0]!r}; allowed: name, scene, "
+            f"{', '.join(DESIGN_KEYS)}"
+        )
+    scene = build_scene(spec.pop("scene", None) or {}, base)
+    return name, scene, spec
 
 
 def _request(angle, omega_start, omega_end, limits: Limits, residual, observable) -> dict:
