@@ -573,15 +573,24 @@ class _Search:
                     if out.found and motion.duration >= out.duration_s:
                         continue
                     check = self.full(motion)
-                    meets = check.residual <= self.tol and self._robust(out, motion)
-                    if meets or (not out.found and (best is None or check.residual < best)):
-                        best = check.residual if best is None else min(best, check.residual)
+                    corner = self._corners(motion) if check.residual <= self.tol else {}
+                    worst = max([check.residual, *corner.values()])
+                    meets = worst <= self.tol and len(corner) == len(self.boxed)
+                    if meets or (not out.found and (best is None or worst < best)):
+                        best = worst if best is None else min(best, worst)
                         self._adopt(out, ev, check)
+                        out.corner_residuals = corner
+                        out.robust_residual = max(corner.values()) if corner else None
                         out.found = out.found or meets
                 if out.found:
+                    box = (
+                        ""
+                        if out.robust_residual is None
+                        else f", {out.robust_residual:.3g} at the worst corner of the box"
+                    )
                     out.message = (f"{out.kind} family, spacing {out.spacing_s * 1e3:.4g} ms, "
                                    f"ramps {out.ramp_s * 1e3:.3g} ms: residual "
-                                   f"{out.check.residual:.3g} <= {self.tol:g}")  # fmt: skip
+                                   f"{out.check.residual:.3g}{box} <= {self.tol:g}")  # fmt: skip
                     return self._done(out)
         except _Cut:
             out.message = self._cut_message(out)
@@ -593,9 +602,7 @@ class _Search:
                            f"found is {ev.residual:.3g} (inner model) at duration "
                            f"{ev.duration_s:.4g} s")  # fmt: skip
         elif out.check is not None:
-            worst = out.check.residual
-            if out.robust_residual is not None:
-                worst = max(worst, out.robust_residual)
+            worst = max([out.check.residual, *out.corner_residuals.values()])
             out.message = (f"no move within the limits meets residual {self.tol:g}: the best "
                            f"found is {worst:.3g} at duration {out.duration_s:.4g} s "
                            f"({out.kind} family)")  # fmt: skip
@@ -605,19 +612,14 @@ class _Search:
         out.motion, out.check = self.motion_of(ev), check
         out.kind, out.ramp_s, out.spacing_s, out.kappa = ev.kind, ev.ramp_s, ev.spacing_s, ev.kappa
 
-    def _robust(self, out: MoveDesign, motion: Motion) -> bool:
-        """The full model at every corner of the box (True without one)."""
-        if not self.boxed:
-            return True
-        corner = {}
+    def _corners(self, motion: Motion) -> dict[str, float]:
+        """The full model's residual at the box's corners, in turn until one misses."""
+        corner: dict[str, float] = {}
         for label, sc in self.boxed:
             corner[label] = self.full(motion, sc).residual
             if corner[label] > self.tol:
                 break
-        if max(corner.values()) <= self.tol or out.robust_residual is None:
-            out.corner_residuals = corner
-            out.robust_residual = max(corner.values())
-        return max(corner.values()) <= self.tol
+        return corner
 
     def _done(self, out: MoveDesign) -> MoveDesign:
         out.evaluations = list(self.evaluations)
