@@ -192,3 +192,21 @@ def test_a_tolerance_below_what_the_run_resolves_is_refused():
     match = r"residual = 0.0001: below what the run resolves, .* \(100 x numerics.rtol = 0.001"
     with pytest.raises(RotbeamInputError, match=match):
         rotbeam.design_move(scene, angle=0.3, residual=1e-4, baselines=False, **LIMITS)
+
+
+@pytest.mark.slow
+def test_a_robust_design_holds_at_every_corner_and_costs_duration(slew):
+    """E +-5 %: the design holds at both corners, each run again independently on a scene with
+    E set by hand, and is no shorter than the nominal design."""
+    from rotbeam.analysis.move_check import move_scene
+    from rotbeam.runs.move import simulate_move
+
+    robust = rotbeam.design_move(_scene(), angle=0.3, residual=0.005, robust="E=+-5%",
+                                 baselines=False, **LIMITS)  # fmt: skip
+    assert robust.found and set(robust.corner_residuals) == {"E+", "E-"}
+    assert robust.robust_residual == max(robust.corner_residuals.values()) <= 0.005
+    for label, factor in (("E+", 1.05), ("E-", 0.95)):
+        scene = move_scene(_scene(E=1.22e6 * factor), robust.t, robust.omega, robust.settle_s)
+        again = simulate_move(scene).residual_ym
+        assert again == pytest.approx(robust.corner_residuals[label], rel=1e-6)
+    assert robust.duration_s >= slew[0].duration_s
