@@ -190,3 +190,40 @@ def write_move_csv(path: str | Path, t: np.ndarray, omega: np.ndarray) -> None:
         raise RotbeamInputError(f"--out {str(path)!r}: folder {str(path.parent)!r} does not exist")
     rows = "\n".join(f"{a:.17g},{b:.17g}" for a, b in zip(t, omega, strict=True))
     path.write_text("t,omega\n" + rows + "\n")
+
+
+def ringing(check: MoveCheck, f_hz: tuple[float, float], decay: float) -> complex:
+    """The first mode's complex amplitude in the observable after the move.
+
+    A least-squares fit of the samples after the move by
+    Re(C_1 exp(i w_1 t) + C_2 exp(i w_2 t)) exp(-decay t) + c, the first two modes of the beam
+    turning at the final speed (viscous damping per unit length decays both at one rate), t
+    from the move's end.  C_1 is what the search drives to zero: its modulus is the first
+    mode's residual, its phase says which way the spacing and the amplitudes move it.
+
+    Parameters
+    ----------
+    check : MoveCheck
+        A run with its samples.
+    f_hz : tuple of float
+        The first two frequencies at the final speed [Hz].
+    decay : float
+        Their decay rate zeta_1 w_1 [1/s].
+
+    Returns
+    -------
+    complex
+        C_1 (NaN where fewer than eight samples follow the move).
+    """
+    after = check.t_s > check.duration_s
+    t = check.t_s[after] - check.duration_s
+    if t.size < 8:
+        return complex(math.nan, math.nan)
+    env = np.exp(-decay * t)
+    cols = []
+    for f in f_hz:
+        w = 2.0 * math.pi * f
+        cols += [env * np.cos(w * t), -env * np.sin(w * t)]
+    basis = np.column_stack([*cols, np.ones_like(t)])
+    coef = np.linalg.lstsq(basis, check.values[after], rcond=None)[0]
+    return complex(coef[0], coef[1])

@@ -27,8 +27,15 @@ from ..runs.scene import Scene, build_scene
 from ..solve.timebudget import TimeBudget
 from .motion import Limits, Motion, rigid_slew, rigid_speed_change
 from .move_box import corners, parse_box
-from .move_check import MoveCheck, check_move, integrated_angle, move_samples, write_move_csv
-from .shapers import KINDS, for_mode, shape, shaper
+from .move_check import (
+    MoveCheck,
+    check_move,
+    integrated_angle,
+    move_samples,
+    ringing,
+    write_move_csv,
+)
+from .shapers import KINDS, decay_ratio, for_mode, shape, train
 
 #: modes of the inner model (the modal reduced model; 2 modes: within 1e-4 L of the full
 #: model's residual on the reference beam, docs/design.md)
@@ -46,13 +53,26 @@ INNER_RTOL = 1e-4
 RAMP_SHARE = 1.0 / 20.0
 #: the inner model's target: this share of the tolerance (room for the full model)
 INNER_MARGIN = 0.5
-#: the spacing searched from (1 - BRACKET) to (1 + BRACKET) times the half periods met
+#: the spacing searched from (1 - BRACKET) to (1 + BRACKET) times the half periods met, the
+#: train's amplitude ratio K within exp(+-LOG_RATIO_MAX)
 BRACKET = 0.2
-#: the spacing's resolution, a share of the half period
+LOG_RATIO_MAX = 1.5
+#: finite-difference steps of the first Jacobian: a share of the spacing, and of log K
+STEP_SPACING = 0.02
+STEP_RATIO = 0.03
+#: secant (Broyden) steps on the first mode's amplitude, at most, and the shortening step: the
+#: spacing tried SHORTEN shorter than the root, where the residual has slack
+MAX_NEWTON = 8
+SHORTEN = 0.03
+#: the secant steps' trust region: a share of the spacing, and of log K
+TRUST_SPACING = 0.1
+TRUST_RATIO = 0.3
+#: a family whose least inner residual is within INNER_SLACK of the tolerance is checked on
+#: the full model (the inner model is within about 1e-4 L of it)
+INNER_SLACK = 1.25
+#: the root's resolution, a share of the half period
 XTOL = 5e-4
-#: evaluations of one family's minimisation and of its shortest-spacing root, at most
-MAX_MINIMISE = 24
-MAX_ROOT = 12
+MAX_ROOT = 8
 #: a tolerance below RESOLVE * numerics.rtol * peak is below what the run resolves
 RESOLVE = 100.0
 #: acceleration scalings tried, from the largest (1 / the train's largest amplitude) down to 1
@@ -61,14 +81,17 @@ KAPPA_STEPS = 32
 
 @dataclass(frozen=True)
 class Evaluation:
-    """One candidate of the search: its family, spacing, scaling, duration and inner residual."""
+    """One candidate of the search: its family, the train's spacing and amplitude ratio K, the
+    scaling, its duration, its inner residual and first-mode amplitude (`ringing`)."""
 
     kind: str
     ramp_s: float
     spacing_s: float
+    ratio: float
     kappa: float
     duration_s: float
     residual: float
+    amplitude: complex
     seconds: float
 
 
@@ -97,8 +120,11 @@ class MoveDesign:
         "rigid", "zv", "zvd" -> MoveCheck on the full model (empty when not asked for).
     kind : str
         The design's impulse train ("zv" or "zvd" family).
+    ratio : float
+        Its train's amplitude ratio K (searched with the spacing; the textbook shaper's is
+        exp(-zeta pi / sqrt(1 - zeta^2))).
     ramp_s : float
-        How long its acceleration takes to ramp to the limit [s] (0: steps).
+        How long its acceleration takes to ramp to the limit [s].
     spacing_s : float
         Its impulses' spacing [s].
     kappa : float
@@ -130,6 +156,7 @@ class MoveDesign:
     baselines: dict[str, MoveCheck] = field(default_factory=dict)
     baseline_motions: dict[str, Motion] = field(default_factory=dict)
     kind: str = ""
+    ratio: float = math.nan
     ramp_s: float = math.nan
     spacing_s: float = math.nan
     kappa: float = math.nan
@@ -209,10 +236,11 @@ class MoveDesign:
             ``duration_s``, ``residual``, ``peak`` (full model, the observable's unit),
             ``angle_rad`` (integrated), ``robust_residual`` (worst over the box, or None),
             ``profile_csv``, ``seconds`` (the search's), ``found``, ``message``,
-            ``observable``, ``tolerance``, ``family``, ``spacing_s``, ``kappa``, ``f_hz``,
-            ``zeta``, ``evaluations``, ``baseline_seconds``, ``settle_s`` and ``baselines``:
-            {rigid, zv, zvd} each with ``duration_s``, ``residual``, ``peak``, ``meets`` and
-            ``shorter_by`` (the design's saving, None where the baseline misses).
+            ``observable``, ``tolerance``, ``family``, ``ramp_s``, ``ratio``, ``spacing_s``,
+            ``kappa``, ``f_hz``, ``zeta``, ``evaluations``, ``baseline_seconds``, ``settle_s``
+            and ``baselines``: {rigid, zv, zvd} each with ``duration_s``, ``residual``,
+            ``peak``, ``meets`` and ``shorter_by`` (the design's saving, None where the baseline
+            misses).
         """
         check = self.check
         shorter = self.shorter_than()
@@ -231,6 +259,7 @@ class MoveDesign:
             "tolerance": tol,
             "family": self.kind,
             "ramp_s": self.ramp_s,
+            "ratio": self.ratio,
             "spacing_s": self.spacing_s,
             "kappa": self.kappa,
             "f_hz": self.f_hz,
@@ -429,11 +458,13 @@ def _request(angle, omega_start, omega_end, limits: Limits, residual, observable
 
 
 class _Search:
-    """The search of one request: each family's spacing on the inner model, the full-model
+    """The search of one request: each family's train on the inner model, the full-model
     checks, and the baselines."""
 
     def __init__(self, scene: Scene, limits: Limits, request: dict, boxed: list,
                  progress: Callable[[str], None] | None, budget: TimeBudget) -> None:  # fmt: skip
+        from ..model.modes import linear_frequencies
+
         self.scene, self.limits, self.request = scene, limits, request
         self.boxed, self.progress, self.budget = boxed, progress, budget
         self.tol = request["residual"]
@@ -446,26 +477,29 @@ class _Search:
         freqs = [first_mode(s, w)[0] for s in scenes for w in ends]
         self.f_lo, self.f_hi = min(freqs), max(freqs)
         self.settle_s = CHECK_SETTLE_PERIODS / self.f_lo
-        self.inner_scenes = [self._inner_scene(s) for s in scenes[1:]] or [self._inner_scene(scene)]
-        self.cache: dict[tuple[str, float, float], Evaluation] = {}
+        T = scene.beam.T
+        w12 = linear_frequencies(scene.model(), base * T, 2) / T
+        self.modes_hz = (float(w12[0]) / (2 * math.pi), float(w12[1]) / (2 * math.pi))
+        self.decay = self.zeta * float(w12[0])
+        self.nominal = self._inner_scene(scene)
+        self.corners = [self._inner_scene(s) for _, s in boxed]
+        self.cache: dict[tuple, Evaluation] = {}
+        self.worst_cache: dict[tuple, float] = {}
         self.evaluations: list[Evaluation] = []
-        self.motions: dict[tuple[str, float, float], tuple[Motion, float]] = {}
-        self.families = self._families(scene, base)
+        self.motions: dict[tuple, tuple[Motion, float]] = {}
+        self.families = self._families()
 
-    def _families(self, scene: Scene, base: float) -> list[tuple[str, float]]:
+    def _families(self) -> list[tuple[str, float]]:
         """(train, ramp) pairs, shortest first by the move at the half period of the middle
         frequency: ramps of RAMP_SHARE of the shortest first-mode period (without a jerk
         limit) or the limit's, and ramps of one second-mode period (if longer)."""
-        from ..model.modes import linear_frequencies
-
         a, j = self.limits.max_accel, self.limits.max_jerk
-        T = scene.beam.T
-        f2 = float(linear_frequencies(scene.model(), base * T, 2)[1]) / (2 * math.pi * T)
         short = RAMP_SHARE / self.f_hi if j is None else a / j
-        ramps = sorted({short, max(short, 1.0 / f2)})
+        ramps = sorted({short, max(short, 1.0 / self.modes_hz[1])})
         mid = 0.25 / self.f_lo + 0.25 / self.f_hi
         fams = [(kind, ramp) for kind in KINDS for ramp in ramps]
-        return sorted(fams, key=lambda f: self.candidate(f[0], f[1], mid)[0].duration)
+        K = decay_ratio(self.zeta)
+        return sorted(fams, key=lambda f: self.candidate(f[0], f[1], mid, K)[0].duration)
 
     # --- the family ------------------------------------------------------------------------
     def rigid(self, limits: Limits) -> Motion:
@@ -475,19 +509,20 @@ class _Search:
             return rigid_slew(r["angle"], limits)
         return rigid_speed_change(r["omega_start"], r["omega_end"], limits)
 
-    def candidate(self, kind: str, ramp: float, spacing: float) -> tuple[Motion, float]:
+    def candidate(self, kind: str, ramp: float, spacing: float,
+                  ratio: float) -> tuple[Motion, float]:  # fmt: skip
         """The rigid move at kappa times the acceleration limit (its ramps `ramp` long), shaped
-        by the `kind` train of this spacing: the largest kappa whose shaped move keeps every
-        limit."""
-        key = (kind, ramp, spacing)
+        by the `kind` train of this spacing and amplitude ratio: the largest kappa whose shaped
+        move keeps every limit."""
+        key = (kind, ramp, spacing, ratio)
         if key not in self.motions:
             a = self.limits.max_accel
             own = Limits(self.limits.max_speed, a, a / ramp)
-            train = shaper(kind, spacing, self.zeta)
-            top = 1.0 / max(train.amplitudes)
-            found = (shape(self.rigid(own), train), 1.0)
+            impulses = train(kind, spacing, ratio)
+            top = 1.0 / max(impulses.amplitudes)
+            found = (shape(self.rigid(own), impulses), 1.0)
             for kappa in np.linspace(top, 1.0, KAPPA_STEPS):
-                m = shape(self.rigid(own.scaled(float(kappa))), train)
+                m = shape(self.rigid(own.scaled(float(kappa))), impulses)
                 if m.within(self.limits):
                     found = (m, float(kappa))
                     break
@@ -496,7 +531,7 @@ class _Search:
 
     def motion_of(self, ev: Evaluation) -> Motion:
         """The move of one evaluation."""
-        return self.candidate(ev.kind, ev.ramp_s, ev.spacing_s)[0]
+        return self.candidate(ev.kind, ev.ramp_s, ev.spacing_s, ev.ratio)[0]
 
     # --- runs ------------------------------------------------------------------------------
     def _inner_scene(self, scene: Scene) -> Scene:
@@ -512,32 +547,48 @@ class _Search:
             raise _Cut
         return left
 
-    def inner(self, kind: str, ramp: float, spacing: float) -> Evaluation:
-        """The inner model's residual of one candidate (the worst over the box's corners)."""
-        key = (kind, ramp, float(spacing))
+    def _run(self, scene: Scene, motion: Motion) -> MoveCheck:
+        """One inner run (cut by the budget)."""
+        settle = INNER_SETTLE_PERIODS / self.f_lo
+        c = check_move(scene, motion, self.f_hi, self.observable, settle, self._remaining())
+        if not c.converged and self.budget.spent():
+            raise _Cut
+        return c
+
+    def inner(self, kind: str, ramp: float, spacing: float, ratio: float) -> Evaluation:
+        """The inner model's residual and first-mode amplitude of one candidate (nominal)."""
+        key = (kind, ramp, float(spacing), float(ratio))
         if key in self.cache:
             return self.cache[key]
         motion, kappa = self.candidate(*key)
         t0 = time.perf_counter()
-        worst = 0.0
-        settle = INNER_SETTLE_PERIODS / self.f_lo
-        for sc in self.inner_scenes:
-            c = check_move(sc, motion, self.f_hi, self.observable, settle, self._remaining())
-            if not c.converged:
-                if self.budget.spent():
-                    raise _Cut
-                worst = math.inf
-                break
-            worst = max(worst, c.residual)
+        c = self._run(self.nominal, motion)
+        residual = c.residual if c.converged else math.inf
+        if c.converged:
             self._resolves(c.peak)
-        ev = Evaluation(kind, ramp, float(spacing), kappa, motion.duration, worst,
-                        time.perf_counter() - t0)  # fmt: skip
+        amp = ringing(c, self.modes_hz, self.decay) if c.converged else complex(math.inf, 0)
+        ev = Evaluation(kind, ramp, float(spacing), float(ratio), kappa, motion.duration,
+                        residual, amp, time.perf_counter() - t0)  # fmt: skip
         self.cache[key] = ev
         self.evaluations.append(ev)
         if self.progress is not None:
-            self.progress(f"{kind} spacing {spacing * 1e3:.3f} ms, ramp {ramp * 1e3:.3g} ms: "
-                          f"T {motion.duration:.4g} s, residual {worst:.3g}")  # fmt: skip
+            self.progress(f"{kind} spacing {spacing * 1e3:.3f} ms, K {ratio:.3g}, ramp "
+                          f"{ramp * 1e3:.3g} ms: T {motion.duration:.4g} s, residual "
+                          f"{residual:.3g}")  # fmt: skip
         return ev
+
+    def worst(self, ev: Evaluation) -> float:
+        """The candidate's inner residual, the worst over the box's corners with one."""
+        key = (ev.kind, ev.ramp_s, ev.spacing_s, ev.ratio)
+        if key not in self.worst_cache:
+            worst = ev.residual
+            for sc in self.corners:
+                if worst > self.tol:
+                    break
+                c = self._run(sc, self.motion_of(ev))
+                worst = max(worst, c.residual if c.converged else math.inf)
+            self.worst_cache[key] = worst
+        return self.worst_cache[key]
 
     def _resolves(self, peak: float) -> None:
         """Refuse a tolerance below what the run resolves (RESOLVE * rtol * peak)."""
@@ -561,8 +612,8 @@ class _Search:
 
     # --- the search ------------------------------------------------------------------------
     def design(self) -> MoveDesign:
-        """Each family in turn, shortest first: the spacing of least inner residual, then the
-        shortest spacing within INNER_MARGIN of the tolerance, checked on the full model."""
+        """Each family in turn, shortest first: the train that cancels the first mode on the
+        inner model, shortened where the tolerance leaves slack, checked on the full model."""
         out = MoveDesign(False, "", self.scene, self.request, f_hz=self.f_hz, zeta=self.zeta,
                          settle_s=self.settle_s)  # fmt: skip
         best: float | None = None  # the least full-model residual so far
@@ -611,6 +662,7 @@ class _Search:
     def _adopt(self, out: MoveDesign, ev: Evaluation, check: MoveCheck | None) -> None:
         out.motion, out.check = self.motion_of(ev), check
         out.kind, out.ramp_s, out.spacing_s, out.kappa = ev.kind, ev.ramp_s, ev.spacing_s, ev.kappa
+        out.ratio = ev.ratio
 
     def _corners(self, motion: Motion) -> dict[str, float]:
         """The full model's residual at the box's corners, in turn until one misses."""
@@ -642,32 +694,79 @@ class _Search:
         return f"{done} before the first run"
 
     def _search(self, kind: str, ramp: float) -> list[Evaluation]:
-        """The family's candidates worth a full-model check, best first: the shortest spacing
-        whose inner residual is within INNER_MARGIN of the tolerance, then the least residual."""
-        from scipy.optimize import brentq, minimize_scalar
+        """The family's candidates worth a full-model check, shortest first.
 
+        Secant (Broyden) steps in (spacing, log K of the train) drive the first mode's complex
+        amplitude after the move to zero on the inner model, from the half period of the middle
+        frequency and the model's zeta's K, its first Jacobian by finite differences.  Where the
+        least residual leaves slack (below INNER_MARGIN of the tolerance, at every corner of a
+        box), the shortest spacing at that level is found between SHORTEN shorter and it."""
         lo, hi = (1 - BRACKET) * 0.5 / self.f_hi, (1 + BRACKET) * 0.5 / self.f_lo
-        xtol = XTOL * 0.5 / self.f_hi
-        options = {"xatol": xtol, "maxiter": MAX_MINIMISE}
-        minimize_scalar(lambda s: self.inner(kind, ramp, s).residual ** 2, bounds=(lo, hi),
-                        method="bounded", options=options)  # fmt: skip
+        x = np.array([0.25 / self.f_lo + 0.25 / self.f_hi, math.log(decay_ratio(self.zeta))])
+        scale = np.array([STEP_SPACING * x[0], STEP_RATIO])
+        trust = np.array([TRUST_SPACING * x[0], TRUST_RATIO])
+
+        def f(ev: Evaluation) -> np.ndarray:
+            return np.array([ev.amplitude.real, ev.amplitude.imag])
+
+        def run(x: np.ndarray) -> Evaluation:
+            return self.inner(kind, ramp, float(x[0]), math.exp(float(x[1])))
+
+        ev = run(x)
+        jac = np.column_stack([(f(run(x + d)) - f(ev)) / h
+                               for d, h in ((np.array([scale[0], 0.0]), scale[0]),
+                                            (np.array([0.0, scale[1]]), scale[1]))])  # fmt: skip
+        target = INNER_MARGIN * self.tol
+        for _ in range(MAX_NEWTON):
+            if not np.all(np.isfinite(f(ev))) or ev.residual <= 0.2 * target:
+                break
+            step = np.linalg.lstsq(jac, -f(ev), rcond=None)[0]
+            step *= min(1.0, float(np.min(trust / np.maximum(np.abs(step), 1e-300))))
+            new = np.clip(x + step, [lo, -LOG_RATIO_MAX], [hi, LOG_RATIO_MAX])
+            if np.all(np.abs(new - x) < np.array([XTOL * x[0], 1e-5])):
+                break
+            nxt = run(new)
+            if nxt.residual > ev.residual:  # a step too far: back half way once
+                half = run(x + 0.5 * (new - x))
+                nxt, new = (
+                    (half, x + 0.5 * (new - x)) if half.residual < nxt.residual else (nxt, new)
+                )
+            dx, df = new - x, f(nxt) - f(ev)
+            if np.all(np.isfinite(df)):
+                jac = jac + np.outer(df - jac @ dx, dx) / float(dx @ dx)
+            x, ev = new, nxt
         mine = [e for e in self.evaluations if (e.kind, e.ramp_s) == (kind, ramp)]
         least = min(mine, key=lambda e: e.residual)
-        target = INNER_MARGIN * self.tol
-        if least.residual > target:
-            return [least] if least.residual <= self.tol else []
-        above = [e for e in mine if e.spacing_s < least.spacing_s and e.residual > target]
-        left = max(above, key=lambda e: e.spacing_s) if above else self.inner(kind, ramp, lo)
-        if left.residual > target:
+        if self.worst(least) > INNER_SLACK * self.tol:
+            return []
+        if self.worst(least) > target:
+            return [least]
+        short = self._shorten(kind, ramp, least, target)
+        return [short, least] if short is not least else [least]
+
+    def _shorten(self, kind: str, ramp: float, least: Evaluation, target: float) -> Evaluation:
+        """The shortest spacing (the train's K kept) whose residual is within target."""
+        from scipy.optimize import brentq
+
+        ratio, s1 = least.ratio, least.spacing_s
+        s0 = s1 * (1 - SHORTEN)
+
+        def g(s: float) -> float:
+            return self.worst(self.inner(kind, ramp, s, ratio)) - target
+
+        if g(s0) > 0:
             try:
-                brentq(lambda s: self.inner(kind, ramp, s).residual - target, left.spacing_s,
-                       least.spacing_s, xtol=xtol, maxiter=MAX_ROOT)  # fmt: skip
+                brentq(g, s0, s1, xtol=XTOL * s1, maxiter=MAX_ROOT)
             except RuntimeError:  # not converged in MAX_ROOT: the evaluations so far stand
                 pass
-        meets = [e for e in self.evaluations
-                 if (e.kind, e.ramp_s) == (kind, ramp) and e.residual <= target]  # fmt: skip
-        shortest = min(meets, key=lambda e: e.duration_s)
-        return [shortest] if shortest is least else [shortest, least]
+        ok = [
+            e
+            for e in self.evaluations
+            if (e.kind, e.ramp_s, e.ratio) == (kind, ramp, ratio)
+            and self.worst_cache.get((kind, ramp, e.spacing_s, ratio), math.inf) <= target
+        ]
+        ok.append(least)
+        return min(ok, key=lambda e: e.duration_s)
 
     # --- baselines -------------------------------------------------------------------------
     def baselines(self) -> tuple[dict[str, MoveCheck], dict[str, Motion]]:

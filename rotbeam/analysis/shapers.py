@@ -81,13 +81,43 @@ def shaper(kind: str, spacing: float, zeta: float) -> Shaper:
     Raises
     ------
     RotbeamInputError
-        For an unknown kind or a spacing that is not > 0.
+        For an unknown kind, a spacing that is not > 0 or a zeta outside [0, 1).
+    """
+    return train(kind, spacing, decay_ratio(zeta))
+
+
+def train(kind: str, spacing: float, ratio: float) -> Shaper:
+    """A train of the `kind` pattern: ZV's amplitudes 1, K and ZVD's 1, 2K, K^2, normalised.
+
+    K = `decay_ratio` (zeta) gives the textbook shaper; any K > 0 keeps the pattern (K > 1: a
+    first impulse weaker than the second, for a mode whose frequency or decay changes between
+    the impulses).
+
+    Parameters
+    ----------
+    kind : str
+        "zv" or "zvd".
+    spacing : float
+        Seconds between consecutive impulses, > 0.
+    ratio : float
+        K, > 0.
+
+    Returns
+    -------
+    Shaper
+
+    Raises
+    ------
+    RotbeamInputError
+        For an unknown kind, a spacing or a ratio that is not > 0.
     """
     if kind not in KINDS:
         raise RotbeamInputError(f"shaper {kind!r}: allowed {', '.join(KINDS)}")
     if not math.isfinite(spacing) or spacing <= 0:
         raise RotbeamInputError(f"shaper spacing = {spacing!r}: allowed > 0 s")
-    K = decay_ratio(zeta)
+    K = ratio
+    if not math.isfinite(K) or K <= 0:
+        raise RotbeamInputError(f"shaper amplitude ratio = {K!r}: allowed > 0")
     if kind == "zv":
         amps = (1.0 / (1.0 + K), K / (1.0 + K))
     else:

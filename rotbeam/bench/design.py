@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import argparse
 import math
+import sys
 import time
 from typing import Any
 
@@ -82,6 +83,7 @@ def design_table(cases: tuple[str, ...] = tuple(CASES), N: int = 40) -> pd.DataF
     for name in cases:
         design, seconds = run_case(name, N)
         s = design.summary()
+        print(f"{name}: {design.message} ({seconds:.1f} s)", file=sys.stderr, flush=True)
         nominal[name] = design.duration_s
         for row in design.rows():
             rows.append({"case": name, **row, "found": design.found, "search_s": s["seconds"],
