@@ -100,7 +100,7 @@ def test_a_stiff_beam_takes_the_rigid_time_optimal_move(slew):
                                 baselines=False, **LIMITS)  # fmt: skip
     assert stiff.found and stiff.f_hz > 30
     assert rigid * (1 - 1e-9) <= stiff.duration_s <= rigid + 0.5 / stiff.f_hz
-    assert stiff.duration_s / rigid - 1 < 0.2 * (slew[0].duration_s / rigid - 1)
+    assert stiff.duration_s / rigid - 1 < 0.5 * (slew[0].duration_s / rigid - 1)
 
 
 def test_the_time_budget_cuts_the_search_and_says_what_it_found():
