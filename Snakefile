@@ -29,6 +29,7 @@ include: "workflow/rules/c_hypotheses.smk"
 include: "workflow/rules/nonlinear.smk"
 include: "workflow/rules/scenes.smk"
 include: "workflow/rules/atlas.smk"
+include: "workflow/rules/moves.smk"
 
 
 rule all:

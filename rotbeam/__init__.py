@@ -2,8 +2,9 @@
 
 The public API: the scene (`Beam`, `Drive`, `Effects`, `Numerics`, `Scene`, `load_scene`,
 `build_scene`), its answers (`simulate`, `judge`, `critical`, `effect_budget`, `modes`), the
-atlas of the phase plane (`atlas`, `Atlas`, `plot_atlas`) and `__version__`.
-The names load their modules on first use, so `import rotbeam` is quick.
+atlas of the phase plane (`atlas`, `Atlas`, `plot_atlas`), motion design (`design_move`,
+`MoveDesign`) and `__version__`.  The names load their modules on first use, so
+`import rotbeam` is quick.
 """
 
 from importlib import import_module
@@ -36,6 +37,8 @@ _HOMES = {
     "atlas": "rotbeam.analysis.atlas",
     "Atlas": "rotbeam.analysis.atlas",
     "plot_atlas": "rotbeam.report.atlas_figure",
+    "design_move": "rotbeam.analysis.move_design",
+    "MoveDesign": "rotbeam.analysis.move_design",
     "RotbeamInputError": "rotbeam.config.errors",
 }
 

@@ -37,12 +37,48 @@ def targets(workdir: Path) -> list[Path]:
         workdir / "results" / "reproduction" / f"c_hypotheses.{e}"
         for e in ("csv", "md", "pdf", "png")
     ]
+    out += [workdir / "results" / "moves" / f for f in ("designs.csv", "designs.md",
+                                                         "design.pdf", "design.png",
+                                                         "reference_slew.csv")]  # fmt: skip
     return out
 
 
 def test_every_target_exists_and_is_not_empty(quick_run):
     missing = [str(t) for t in targets(quick_run) if not t.is_file() or t.stat().st_size == 0]
     assert not missing
+
+
+def test_the_designed_move_meets_its_tolerance_and_its_file_runs(quick_run):
+    """results/moves/: the design meets the tolerance and is shorter than ZVD; its move file,
+    run again by `rotbeam simulate --move`, gives the table's residual."""
+    import subprocess
+    import sys
+
+    table = pd.read_csv(quick_run / "results" / "moves" / "designs.csv")
+    rows = table.set_index("move")
+    assert list(rows.index) == ["designed", "rigid", "zv", "zvd"]
+    assert rows.loc["designed", "meets"] and rows.loc["designed", "residual"] <= 0.005
+    assert rows.loc["designed", "duration_s"] < rows.loc["zvd", "duration_s"]
+    cmd = [
+        sys.executable,
+        "-m",
+        "rotbeam",
+        "simulate",
+        "--move",
+        str(quick_run / "results" / "moves" / "reference_slew.csv"),
+        "--N",
+        "8",
+        "--rtol",
+        "1e-4",
+        "--settle",
+        repr(float(table["settle_s"].iloc[0])),
+        "--json",
+        "--quiet",
+    ]
+    out = subprocess.run(cmd, capture_output=True, text=True, check=True)
+    assert json.loads(out.stdout)["residual_ym"] == pytest.approx(
+        rows.loc["designed", "residual"], rel=1e-6
+    )
 
 
 def test_fitted_c_per_threshold(quick_run):

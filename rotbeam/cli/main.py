@@ -32,6 +32,7 @@ COMMANDS = {
     "damping": "damping",
     "identify": "identify",
     "atlas": "atlas",
+    "design-move": "design",
 }
 
 #: exit status of a fit that ran but cannot be trusted (the message says why)

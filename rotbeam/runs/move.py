@@ -97,16 +97,10 @@ class MoveResult:
             If the result carries no angles (a MoveResult built without them).
         """
         names = observable_names(names)
-        if self.theta is None or self.theta_quasistatic is None:
-            raise ValueError("this MoveResult carries no angles (theta) to observe")
         model, beam = self.scene.model(), self.scene.beam
         tau = self.t_s / beam.T
         in_move = tau < model.dl.law.duration
-        qs = States(tau, self.theta_quasistatic, still(self.theta_quasistatic),
-                    still(self.theta_quasistatic))  # fmt: skip
-        dyn = States(tau, self.theta, self.theta_t)
-        if any(OBSERVABLES[name].rates for name in names):
-            dyn = States(tau, self.theta, self.theta_t, _accelerations(model, dyn))
+        dyn, qs = self._states(model, any(OBSERVABLES[name].rates for name in names))
         out = {}
         for name in names:
             obs = OBSERVABLES[name]
@@ -115,6 +109,43 @@ class MoveResult:
             after = np.abs(values[~in_move])
             out[name]["residual"] = float(np.max(after)) if after.size else math.nan
         return out
+
+    def series(self, name: str) -> np.ndarray:
+        """One observable of the dynamic run at every sample (`t_s`), in its unit.
+
+        Parameters
+        ----------
+        name : str
+            A name of `rotbeam.runs.observables.OBSERVABLES`.
+
+        Returns
+        -------
+        numpy.ndarray
+            Shape of `t_s`.
+
+        Raises
+        ------
+        RotbeamInputError
+            For a name the registry does not hold.
+        ValueError
+            If the result carries no angles (a MoveResult built without them).
+        """
+        (name,) = observable_names(name)
+        model = self.scene.model()
+        dyn, _ = self._states(model, OBSERVABLES[name].rates)
+        return OBSERVABLES[name](model, self.scene.beam, dyn)
+
+    def _states(self, model, rates: bool) -> tuple[States, States]:
+        """The dynamic run's states (with accelerations where `rates`) and the twin's."""
+        if self.theta is None or self.theta_quasistatic is None:
+            raise ValueError("this MoveResult carries no angles (theta) to observe")
+        tau = self.t_s / self.scene.beam.T
+        qs = States(tau, self.theta_quasistatic, still(self.theta_quasistatic),
+                    still(self.theta_quasistatic))  # fmt: skip
+        dyn = States(tau, self.theta, self.theta_t)
+        if rates:
+            dyn = States(tau, self.theta, self.theta_t, _accelerations(model, dyn))
+        return dyn, qs
 
     def summary(self) -> dict[str, Any]:
         """The move's numbers for tables and JSON (scalars only).

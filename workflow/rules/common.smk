@@ -154,6 +154,10 @@ def all_targets():
     out += [f"results/reproduction/claims.{e}" for e in ("csv", "md")]
     if config.get("user_scenes"):
         out += [f"results/scenes/scenes.{e}" for e in ("csv", "md", "pdf", "png")]
+    if MOVE_DESIGNS:
+        out += [f"results/moves/designs.{e}" for e in ("csv", "md")]
+        out += [f"results/moves/design.{e}" for e in ("pdf", "png")]
+        out += [f"results/moves/{d['name']}.csv" for d in MOVE_DESIGNS]
     out += [
         f"results/reproduction/c_hypotheses.{e}" for e in ("csv", "md", "pdf", "png")
     ]
@@ -163,6 +167,10 @@ def all_targets():
 # The scene files (CSV) that user scenes name are relative to config/; CONFIG_DIR is that folder
 # relative to the working directory, so the rule's params do not depend on where the workflow is.
 CONFIG_DIR = os.path.relpath(Path(workflow.basedir) / "config")
+
+
+# Motion designs (config move_designs; rules/moves.smk): a list of entries, each named
+MOVE_DESIGNS = config.get("move_designs") or []
 
 
 def user_scene_files():
