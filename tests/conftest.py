@@ -93,10 +93,11 @@ def workflow_copy(tmp_path) -> Path:
 
 @pytest.fixture(scope="session")
 def quick_run(tmp_path_factory) -> Path:
-    """The whole quick config run once, in a copy of the workflow, shared by the tests that read
-    its results (they must not change it: copy it first).  Its output is in quick_run.log."""
+    """The whole quick config run once (`all` and the designed moves), in a copy of the
+    workflow, shared by the tests that read its results (they must not change it: copy it
+    first).  Its output is in quick_run.log."""
     work = copy_workflow(tmp_path_factory.mktemp("quick") / "wf")
-    p = snakemake(work, "--cores", "2", *QUICK)
+    p = snakemake(work, "--cores", "2", *QUICK, "all", "moves")
     (work / "quick_run.log").write_text(p.stdout + p.stderr)
     assert p.returncode == 0, p.stderr[-3000:]
     # the workflow profile is read (greedy job selection: see profiles/default/config.yaml)

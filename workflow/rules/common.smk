@@ -154,10 +154,6 @@ def all_targets():
     out += [f"results/reproduction/claims.{e}" for e in ("csv", "md")]
     if config.get("user_scenes"):
         out += [f"results/scenes/scenes.{e}" for e in ("csv", "md", "pdf", "png")]
-    if MOVE_DESIGNS:
-        out += [f"results/moves/designs.{e}" for e in ("csv", "md")]
-        out += [f"results/moves/design.{e}" for e in ("pdf", "png")]
-        out += [f"results/moves/{d['name']}.csv" for d in MOVE_DESIGNS]
     out += [
         f"results/reproduction/c_hypotheses.{e}" for e in ("csv", "md", "pdf", "png")
     ]
@@ -251,3 +247,14 @@ def checked_versions():
         return {}
     pins = (line.split("#")[0].strip() for line in path.read_text().splitlines())
     return dict(p.split("==") for p in pins if "==" in p)
+
+
+def move_design_targets():
+    """What the target `moves` builds (rules/moves.smk): the designs' table, figure and move
+    files; nothing without designs (not part of `all`: a design's search takes minutes)."""
+    if not MOVE_DESIGNS:
+        return []
+    out = [f"results/moves/designs.{e}" for e in ("csv", "md")]
+    out += [f"results/moves/design.{e}" for e in ("pdf", "png")]
+    out += [f"results/moves/{d['name']}.csv" for d in MOVE_DESIGNS]
+    return out

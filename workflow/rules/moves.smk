@@ -1,5 +1,11 @@
 # Motion design (config move_designs): each designed move beside its rigid, ZV and ZVD
-# baselines, one table, one move file each and the figure of the first design.
+# baselines, one table, one move file each and the figure of the first design.  Target `moves`
+# (not part of `all`: `snakemake --cores all moves`).
+
+
+rule moves:
+    input:
+        move_design_targets(),
 
 
 rule move_designs:
