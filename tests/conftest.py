@@ -97,7 +97,8 @@ def quick_run(tmp_path_factory) -> Path:
     workflow, shared by the tests that read its results (they must not change it: copy it
     first).  Its output is in quick_run.log."""
     work = copy_workflow(tmp_path_factory.mktemp("quick") / "wf")
-    p = snakemake(work, "--cores", "2", *QUICK, "all", "moves")
+    # the targets first: --configfile reads a list
+    p = snakemake(work, "all", "moves", "--cores", "2", *QUICK)
     (work / "quick_run.log").write_text(p.stdout + p.stderr)
     assert p.returncode == 0, p.stderr[-3000:]
     # the workflow profile is read (greedy job selection: see profiles/default/config.yaml)
