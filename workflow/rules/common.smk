@@ -251,7 +251,8 @@ def checked_versions():
 
 def move_design_targets():
     """What the target `moves` builds (rules/moves.smk): the designs' table, figure and move
-    files; nothing without designs (not part of `all`: a design's search takes minutes)."""
+    files; nothing without designs (not part of `all`: a design's search takes minutes).
+    """
     if not MOVE_DESIGNS:
         return []
     out = [f"results/moves/designs.{e}" for e in ("csv", "md")]
