@@ -13,7 +13,7 @@ certificate and the multipliers reported (`reported_multipliers`), which come fr
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -65,17 +65,21 @@ class OrbitVerdict:
     #: the reported orbit's remaining transient: the certificate's offset estimate, or the
     #: harmonic tail of a collocation reported as it is (inf while time stepping decides)
     transient: float = math.inf
-    decided: bool = field(init=False)  #: the orbit is the reported state: no time stepping
-    unstable: bool = field(init=False)  #: the orbit's multipliers say it is unstable
-    #: time stepping starts on the orbit: it converged and is not unstable
-    on_orbit: bool = field(init=False)
 
-    def __post_init__(self) -> None:
-        unstable = self.floquet is not None and self.floquet.unstable
-        converged = self.periodic is not None and self.periodic.converged
-        object.__setattr__(self, "decided", self.status is not None)
-        object.__setattr__(self, "unstable", unstable)
-        object.__setattr__(self, "on_orbit", converged and not unstable)
+    @property
+    def decided(self) -> bool:
+        """The orbit is the reported state: no time stepping."""
+        return self.status is not None
+
+    @property
+    def unstable(self) -> bool:
+        """The orbit's multipliers say it is unstable."""
+        return self.floquet is not None and self.floquet.unstable
+
+    @property
+    def on_orbit(self) -> bool:
+        """Time stepping starts on the orbit: it converged and is not unstable."""
+        return self.periodic is not None and self.periodic.converged and not self.unstable
 
     def march_start(self, z: np.ndarray, size: float) -> np.ndarray:
         """The state time stepping starts from: z, pushed off an unstable orbit along its most

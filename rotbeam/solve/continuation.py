@@ -103,9 +103,15 @@ class FirstOrderRows(Residual):
 
     def __init__(self, problem: FirstOrderProblem, t: np.ndarray, Z: np.ndarray, Z_t: np.ndarray,
                  p: float) -> None:  # fmt: skip
-        self.problem, self.t, self.Z, self.p = problem, t, Z, p
-        F = np.array([problem.rhs(tj, zj, p) for tj, zj in zip(t, Z, strict=True)])
-        self.R = Z_t - F
+        self.problem, self.t, self.Z, self.Z_t, self.p = problem, t, Z, Z_t, p
+
+    @property
+    def R(self) -> np.ndarray:
+        """z' - f(t_j, z_j; p), shape (M, dim): evaluated where it is read (a Jacobian needs
+        only the blocks)."""
+        pr = self.problem
+        F = np.array([pr.rhs(tj, zj, self.p) for tj, zj in zip(self.t, self.Z, strict=True)])
+        return self.Z_t - F
 
     def mass(self) -> np.ndarray:
         """dR/dz'' = 0 at each instant.
@@ -171,9 +177,11 @@ class FirstOrderProblem(BranchProblem):
         M: int = 33,
     ) -> None:
         self.rhs, self.jac, self.period, self.dim, self.M = rhs, jac, period, dim, M
+        self._last: tuple[float, SpectralCollocation] | None = None  # the last p's collocation
 
     def collocation(self, p: float) -> SpectralCollocation:
-        """The collocation problem at the parameter p (its period P(p)).
+        """The collocation problem at the parameter p (its period P(p)); the last one is kept
+        (the residual and the Jacobian at one point share it).
 
         Parameters
         ----------
@@ -185,10 +193,13 @@ class FirstOrderProblem(BranchProblem):
         SpectralCollocation
             Of the rows `FirstOrderRows` at M instants of P(p).
         """
+        if self._last is not None and self._last[0] == p:
+            return self._last[1]
         P = self.period(p)
-        tau = np.arange(self.M) * P / self.M
-        return SpectralCollocation(lambda Z, Z_t, _: FirstOrderRows(self, tau, Z, Z_t, p), P,
-                                   self.M)  # fmt: skip
+        col = SpectralCollocation(lambda Z, Z_t, _: FirstOrderRows(self, col.tau, Z, Z_t, p), P,
+                                  self.M)  # fmt: skip
+        self._last = (p, col)
+        return col
 
     def residual(self, x: np.ndarray, p: float) -> np.ndarray:
         """The collocation residual D Z - f(t_j, Z_j; p).
