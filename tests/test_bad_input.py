@@ -326,6 +326,24 @@ CONFIG_CASES = {
     "convergence N too small": (("convergence", "N"), [5, 2], ["convergence.N[1]", "2", "[3,"]),
     "convergence N one grid": (("convergence", "N"), [5], ["convergence.N", "[5]", "2 or more"]),
     "frames zero": (("fig2", "frames"), 0, ["fig2.frames", "0", "[1, 64]"]),
+    "move scene N text": (
+        ("move_designs", 0, "scene", "numerics", "N"), "abc",
+        ["move_designs[0].scene.numerics.N", "'abc'", "integer"],
+    ),
+    "move scene E zero": (
+        ("move_designs", 0, "scene", "beam"), {"E": 0}, ["move_designs[0].scene.beam.E", "> 0"]
+    ),
+    "move angle and speeds": (
+        ("move_designs", 0, "omega_end"), 5.0, ["move_designs[0].", "--angle", "not both"]
+    ),
+    "move speed beyond limit": (
+        ("move_designs", 0), {"name": "s", "omega_start": 0.0, "omega_end": 20.0,
+                              "max_speed": 10.0, "max_accel": 100.0},
+        ["move_designs[0].omega_end = 20.0", "max_speed = 10"],
+    ),
+    "move box unknown": (
+        ("move_designs", 0, "robust"), "Young=+-5%", ["move_designs[0].", "Young"]
+    ),
     "zeta_max too large": (("figE10", "zeta_max"), 0.6, ["figE10.zeta_max", "0.6", "0.53]"]),
     "h_over_L 1": (("fig7", "h_over_L"), [1.0], ["fig7.h_over_L[0]", "1.0", "(0, 1)"]),
 }  # fmt: skip

@@ -380,7 +380,7 @@ DESIGN_KEYS = ("angle", "omega_start", "omega_end", "max_speed", "max_accel", "m
 
 
 def design_spec(spec: dict[str, Any], base: str | Path = ".") -> tuple[str, Scene, dict]:
-    """One entry of the workflow's `move_designs` list: its name, scene and request.
+    """One entry of the workflow's `move_designs` list: its name, scene and request, checked.
 
     Parameters
     ----------
@@ -400,19 +400,27 @@ def design_spec(spec: dict[str, Any], base: str | Path = ".") -> tuple[str, Scen
     Raises
     ------
     RotbeamInputError
-        One line for a missing name or an unknown key.
+        One line naming the key within the entry (``scene.numerics.N = ...``, ``angle = ...``)
+        for a missing name, an unknown key, a bad scene or a request `design_move` refuses.
     """
     spec = dict(spec)
     name = spec.pop("name", None)
     if not isinstance(name, str) or not name:
-        raise RotbeamInputError(f"move_designs: an entry without a name: {spec!r}")
+        raise RotbeamInputError(f"name = {name!r}: must be a non-empty string")
     extra = sorted(set(spec) - set(DESIGN_KEYS) - {"scene"})
     if extra:
         raise RotbeamInputError(
-            f"move_designs {name}: unknown key {extra[0]!r}; allowed: name, scene, "
+            f"{extra[0]} = {spec[extra[0]]!r}: unknown key; allowed: name, scene, "
             f"{', '.join(DESIGN_KEYS)}"
         )
-    scene = build_scene(spec.pop("scene", None) or {}, base)
+    try:
+        scene = build_scene(spec.pop("scene", None) or {}, base)
+    except RotbeamInputError as exc:
+        raise RotbeamInputError(f"scene.{exc}") from None
+    limits = Limits(spec.get("max_speed"), spec.get("max_accel"), spec.get("max_jerk"))
+    _request(spec.get("angle"), spec.get("omega_start"), spec.get("omega_end"), limits,
+             spec.get("residual", 0.005), spec.get("observable", "y_m"))  # fmt: skip
+    parse_box(spec.get("robust"))
     return name, scene, spec
 
 

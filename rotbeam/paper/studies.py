@@ -398,6 +398,14 @@ def check_config(
         from ..analysis.scenes import build_scenes
 
         build_scenes(config["user_scenes"], scene_dir)
+    if config.get("move_designs"):
+        from ..analysis.move_design import design_spec
+
+        for i, spec in enumerate(config["move_designs"]):
+            try:
+                design_spec(spec, scene_dir)
+            except RotbeamInputError as exc:
+                raise RotbeamInputError(f"move_designs[{i}].{exc}") from None
 
 
 def validate_config(
