@@ -18,7 +18,11 @@ The independent checks, by command:
   clamp's centrifugal load bends it nowhere), so the Euler load's share is 1;
 * sweep: every row equals `simulate` of the scene alone at its f_d;
 * modes: the first frequency at rest against the tip-loaded cantilever's characteristic
-  equation (`tip_loaded_root`, a closed form).
+  equation (`tip_loaded_root`, a closed form);
+* atlas (every drive, beam and effects): the last row against `simulate` started afresh at its
+  point; a profile or a move (their own speeds) and auto (a budget at one frequency) refused;
+* design-move (every beam, a list of effects with the payload): the move file it writes run
+  again by `simulate_move` gives its residual, and integrates to its angle; auto refused.
 
 The matrix and the reason of each refusal: `CELLS` and `REFUSALS`; `test_the_matrix_is_whole`
 holds the count.  Every cell is in the quick subset (N = 8, drives off resonance: the matrix
@@ -269,8 +273,108 @@ def test_modes_refuses_what_it_does_not_read(flag):
     assert "unrecognized arguments" in err and flag[0] in err
 
 
+#: the atlas's grid: two lines about 10 and 20 rad/s, 0.8 and 1.2 Hz (below every resonance)
+ATLAS_AXES = ([10.0, 20.0], [0.8, 1.2])
+ATLAS_ARGS = ["--omega0-min", "10", "--omega0-max", "20", "--fd-min", "0.8", "--fd-max", "1.2",
+              "--points", "2,2", "--workers", "1"]  # fmt: skip
+#: the designed move: a slew through 0.1 rad within limits that a jerk limit keeps smooth
+DESIGN = {"angle": 0.1, "max_speed": 5.0, "max_accel": 50.0, "max_jerk": 5000.0,
+          "residual": 0.005}  # fmt: skip
+DESIGN_ARGS = ["--angle", "0.1", "--max-speed", "5", "--max-accel", "50", "--max-jerk", "5000",
+               "--residual", "0.005", "--rtol", "1e-4", "--no-baselines"]  # fmt: skip
+#: (command, drive or effects) -> the words of the one-line refusal of the atlas and the design
+GRID_REFUSALS = {
+    ("atlas", "profile"): "a profile has its own speeds",
+    ("atlas", "named profile"): "a profile has its own speeds",
+    ("atlas", "move"): "a move has its own speeds",
+    ("atlas", "auto"): "auto runs an effect budget at one drive frequency",
+    ("design-move", "auto"): "auto is not read here",
+}
+#: a design costs two searches (one per interface) and a rerun, 10-20 s a cell: every beam
+#: with the default effects, the payload with a list, and the refusal of auto
+GRID_CELLS = [("atlas", d, b, e) for d in DRIVES for b in BEAMS for e in EFFECTS] + [
+    *(("design-move", "sine", b, "default") for b in BEAMS),
+    ("design-move", "sine", "tip mass", "list"),
+    ("design-move", "sine", "bare", "auto"),
+]
+
+
+def scene_file(folder: Path, tmp_path: Path, drive: str, beam: str, effects: str) -> Path:
+    """The cell's scene file, its drive files named by absolute path."""
+    s = spec(drive, beam, effects)
+    for key in ("profile", "move"):
+        if isinstance(s["drive"].get(key), str):
+            s["drive"][key] = str(folder / s["drive"][key])
+    path = tmp_path / "scene.yaml"
+    path.write_text(yaml.safe_dump(s))
+    return path
+
+
+@pytest.mark.parametrize("cell", GRID_CELLS, ids=["-".join(c) for c in GRID_CELLS])
+def test_grid_cell(cell, folder, tmp_path):
+    """The atlas and the motion design over the same drives, beams and effects: a refusal in
+    one line from both interfaces, or the same answer from both, checked independently (an
+    atlas row against `rotbeam.simulate` started afresh at its point; the designed move's file
+    run again by `simulate_move`, its residual and angle)."""
+    command, drive, beam, effects = cell
+    path = scene_file(folder, tmp_path, drive, beam, effects)
+    args = [command, "--scene", str(path), "--json", "--quiet"]
+    args += ["--effects", "auto"] if effects == "auto" else []
+    args += ATLAS_ARGS if command == "atlas" else [*DESIGN_ARGS, "--out", str(tmp_path / "m.csv")]
+    rc, out, err = run_main(args)
+    scene = build_scene(spec(drive, beam, effects), folder)
+    words = GRID_REFUSALS.get((command, effects)) or GRID_REFUSALS.get((command, drive))
+    if words is not None:
+        assert rc == 2 and out == "" and "Traceback" not in err, (rc, err)
+        assert len(err.strip().splitlines()) == 1 and words in err, err
+        if effects != "auto":  # the API takes a list of effects only: auto is a CLI word
+            with pytest.raises(RotbeamInputError, match=words):
+                rotbeam.atlas(scene, *ATLAS_AXES, workers=1)
+        return
+    assert rc == 0 and "Traceback" not in err, err
+    answer = json.loads(out)
+    if command == "atlas":
+        check_atlas(answer, rotbeam.atlas(scene, *ATLAS_AXES, workers=1), scene)
+    else:
+        scene = replace(scene, numerics=replace(scene.numerics, rtol=1e-4))
+        design = rotbeam.design_move(scene, baselines=False, **DESIGN)
+        again = spec(drive, beam, effects)  # the move file in the cell's scene, run again
+        again["drive"] = {"move": str(tmp_path / "m.csv"), "settle": design.settle_s}
+        again["numerics"]["rtol"] = 1e-4
+        check_design(answer, design, build_scene(again), tmp_path / "m.csv")
+
+
+def check_atlas(answer: dict, atlas, scene) -> None:
+    rows = atlas.rows
+    assert len(rows) == 4 and rows["ran"].all() and rows["converged"].all()
+    cli_rows = answer["rows"]
+    assert [r["delta_rms"] for r in cli_rows] == pytest.approx(list(rows["delta_rms"]), rel=1e-9)
+    last = rows.iloc[-1]  # the last point of the last line: continued the furthest
+    drive = replace(scene.drive, omega0=float(last["omega0"]), f_d=float(last["f_d"]))
+    alone = rotbeam.simulate(replace(scene, drive=drive))
+    assert last["rms_dynamic"] == pytest.approx(alone.rms_dynamic, rel=1e-6)
+    assert last["rms_quasistatic"] == pytest.approx(alone.rms_quasistatic, rel=1e-9)
+
+
+def check_design(answer: dict, design, rerun, csv: Path) -> None:
+    assert answer["found"] and design.found, design.message
+    assert answer["duration_s"] == pytest.approx(design.duration_s, rel=1e-9)
+    assert answer["residual"] == pytest.approx(design.check.residual, rel=1e-9)
+    assert answer["residual"] <= DESIGN["residual"]
+    again = simulate_move(rerun)
+    assert again.converged, again.message
+    assert again.residual_ym == pytest.approx(answer["residual"], rel=1e-6)
+    t, omega = (np.loadtxt(csv, delimiter=",", skiprows=1, usecols=(i,)) for i in (0, 1))
+    assert float(np.sum(np.diff(t) * (omega[1:] + omega[:-1]) / 2)) == pytest.approx(
+        DESIGN["angle"], rel=1e-5
+    )
+
+
 def test_the_matrix_is_whole():
-    """4 commands x 5 drives x 3 beams x 3 effects, and how many refuse (the note's count)."""
+    """4 commands x 5 drives x 3 beams x 3 effects, and how many refuse (the note's count);
+    the atlas over the same 45, the design over 5 (`GRID_CELLS`)."""
     refused = [c for c in CELLS if refusal(c[0], c[1], c[3]) is not None]
     assert len(CELLS) == 180
     assert len(refused) == 3 * (3 * 3) + 3 * 1 + 2 * 4 * 3  # move x 3 commands; auto: 54
+    grid_refused = [c for c in GRID_CELLS if c[3] == "auto" or c[:2] in GRID_REFUSALS]
+    assert len(GRID_CELLS) == 5 * 3 * 3 + 5 and len(grid_refused) == 3 * 3 * 3 + 2 * 3 + 1
