@@ -156,16 +156,14 @@ class FloquetResult:
         return {"floquet_max": self.max_abs, "stable": self.stable}
 
 
-def _step_exponentials(steps_data, h: float) -> np.ndarray:
-    """exp of each step's augmented matrix [[h J, -h r], [0, 0]], (S, dim + 1, dim + 1)."""
-    out = []
-    for J, r in steps_data:
-        dim = J.shape[0]
-        A = np.zeros((dim + 1, dim + 1))
-        A[:dim, :dim] = h * J
-        A[:dim, dim] = -h * r
-        out.append(sla.expm(A))
-    return np.array(out)
+def _step_exponentials(Js: np.ndarray, r: np.ndarray, h: float) -> np.ndarray:
+    """exp of each step's augmented matrix [[h J, -h r], [0, 0]] in one batched call,
+    (S, dim + 1, dim + 1) from J (S, dim, dim) and r (S, dim)."""
+    S, dim = r.shape
+    A = np.zeros((S, dim + 1, dim + 1))
+    A[:, :dim, :dim] = h * Js
+    A[:, :dim, dim] = -h * r
+    return sla.expm(A)
 
 
 def _product(
@@ -190,7 +188,8 @@ def _coarse_product(
     """(Phi, e(P)) of the rule on a third of the steps: step k of 3h has its midpoint at the
     midpoint of fine step 3k + 1, so its exponential is that step's cubed (two products, no
     new exponential).  E starts at a step whose index is a multiple of 3."""
-    return _product(np.array([Ek @ Ek @ Ek for Ek in E[1::3]]), start)
+    E3 = E[1::3]
+    return _product(E3 @ E3 @ E3, start)
 
 
 def multipliers_of(
@@ -326,7 +325,7 @@ def _monodromy(jac, Z, period, steps, rhs, rows, coarse: bool):
     for first in range(0, steps, BLOCK):
         check_deadline()
         Js, r, has_defect = _steps_data(jac, Z, period, t[first : first + BLOCK], rhs, rows)
-        E = _step_exponentials(zip(Js, r, strict=True), period / steps)
+        E = _step_exponentials(Js, r, period / steps)
         fine = _product(E, fine)
         low = _coarse_product(E, low) if coarse else None
     Phi, defect = fine
