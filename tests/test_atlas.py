@@ -128,6 +128,27 @@ def test_a_cut_atlas_says_which_lines_and_points_it_reached(monkeypatch, tmp_pat
     assert "line 1 " not in text
 
 
+def test_a_message_names_five_cut_lines_and_counts_the_rest():
+    """A budget that cuts many lines (near a resonance every line has points whose time
+    stepping its share ends) gives a message of the points cut in all, five lines named and
+    the number of the others, not a line of text per cut line."""
+    from rotbeam.runs.atlas import LISTED_LINES, cut_notes, where_cut
+
+    records = []
+    for line in range(8):
+        for k in range(4):  # point 3 of every line cut short, line 7's last also not run
+            cut, not_run = k == 3, line == 7 and k == 2
+            why = "the time budget of 2 s ended it" if cut else ""
+            records.append({"line": line, "omega0": 5.0 + line, "ran": not not_run,
+                            "converged": not (cut or not_run), "message": why})  # fmt: skip
+    lines, notes = where_cut(records)
+    assert lines == list(range(8)) and LISTED_LINES == 5
+    text = cut_notes(records, notes)
+    assert text.startswith("8 points cut short, 1 not run; line 1 (Omega_0 = 5 rad/s): 3 of 4")
+    assert "line 5 (Omega_0 = 9 rad/s)" in text and "line 6 " not in text
+    assert text.endswith("; and 3 more lines")
+
+
 def test_each_line_gets_its_share_of_what_is_left(monkeypatch):
     """A line may spend what is left of the atlas's budget times the workers over the lines
     left, so that one line with a hard point cannot take the whole atlas's (one worker, four

@@ -14,7 +14,7 @@ import pandas as pd
 from ..config.checks import check_threshold
 from ..config.threads import one_blas_thread
 from ..model.params import Beam
-from ..runs.atlas import ATLAS_COLUMNS, Progress, run_atlas, where_cut
+from ..runs.atlas import ATLAS_COLUMNS, Progress, cut_notes, run_atlas, where_cut
 from ..runs.scene import Scene
 from .boundary import boundary_table
 
@@ -187,8 +187,10 @@ def atlas_from_rows(
     if not message:
         cut, notes = where_cut(rows.to_dict(orient="records"))
         if cut:
-            message = f"the time budget cut {len(cut)} of {rows['line'].nunique()} lines: " + (
-                "; ".join(notes)
+            records = rows.to_dict(orient="records")
+            message = (
+                f"the time budget cut {len(cut)} of {rows['line'].nunique()} lines: "
+                f"{cut_notes(records, notes)}"
             )
     return Atlas(rows, boundary_of(rows, beam, threshold), threshold, seconds, message, workers,
                  beam)  # fmt: skip

@@ -293,6 +293,35 @@ def where_cut(records: Sequence[dict]) -> tuple[list[int], list[str]]:
     return lines, notes
 
 
+#: cut lines a message names one by one; the rest are counted (the rows say which)
+LISTED_LINES = 5
+
+
+def cut_notes(records: Sequence[dict], notes: list[str]) -> str:
+    """The points cut in all, then the notes of the first LISTED_LINES cut lines and how many
+    more there are: a message that stays readable when a budget cuts many lines.
+
+    Parameters
+    ----------
+    records : sequence of dict
+        An atlas's rows (`ATLAS_COLUMNS`).
+    notes : list of str
+        `where_cut`'s notes, one per cut line.
+
+    Returns
+    -------
+    str
+        E.g. "237 points cut short, 0 not run; line 1 (...): ...; ...; and 52 more lines".
+    """
+    cut = [r for r in records if cut_by_budget(r)]
+    not_run = sum(not r["ran"] for r in cut)
+    out = f"{len(cut) - not_run} points cut short, {not_run} not run; " + "; ".join(
+        notes[:LISTED_LINES]
+    )
+    more = len(notes) - LISTED_LINES
+    return out + (f"; and {more} more line{'s' if more > 1 else ''}" if more > 0 else "")
+
+
 def default_workers(lines: int) -> int:
     """Processes for `lines` lines: the cores this process may run on, at most one per line.
 
@@ -378,8 +407,8 @@ def run_atlas(
     if cut_lines:
         message = (
             f"the time budget of {total:.3g} s (numerics.max_seconds) cut the atlas, "
-            f"{seconds:.3g} s: {len(omega0s) - len(cut_lines)} of {len(omega0s)} lines whole; "
-            f"{'; '.join(notes)}"
+            f"{seconds:.3g} s: {len(omega0s) - len(cut_lines)} of {len(omega0s)} lines whole, "
+            f"{cut_notes(records, notes)}"
         )
     return AtlasRun(records, omega0s, f_ds, seconds, cut_lines, message, int(workers))
 
