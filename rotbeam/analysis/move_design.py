@@ -1,13 +1,14 @@
 """The fastest move within limits that leaves the beam still: motion design with input-shaping
 baselines.
 
-A rest-to-rest slew through an angle, or a change from one steady speed to another, is the
-rigid-body time-optimal move (bang-coast-bang, with a jerk limit its S-curve) convolved with a
-two- or three-impulse train (`rotbeam.analysis.shapers`) whose spacing is searched on the beam
-itself, its acceleration and jerk raised as far as the limits allow where the shaped pulses do
-not overlap.  The spacing is found on the modal reduced model (two modes) and the move is then
-run on the full model at the scene's grid, whose residual is the one reported.  Why this family
-and this search, and what they cost: docs/design.md.
+A rest-to-rest slew through an angle, or a change from one steady speed to another, is sought
+in families of moves (`rotbeam.analysis.move_families`): the rigid-body time-optimal move
+convolved with a ZV- or ZVD-pattern train (with a box of beams, two ZV trains), its
+acceleration raised as far as the limits allow where the shaped pulses do not overlap; for a
+change of speed also two pulses and a coast; each optionally convolved with a train at the
+second mode.  The unknowns are found on the modal reduced model (two modes) and the move is
+then run on the full model at the scene's grid, whose residual is the one reported.  Why these
+families and this search, and what they cost: docs/design.md.
 """
 
 from __future__ import annotations
@@ -268,7 +269,8 @@ class MoveDesign:
             ``angle_rad`` (integrated), ``robust_residual`` (worst over the box, or None),
             ``profile_csv``, ``seconds`` (the search's), ``found``, ``message``,
             ``observable``, ``tolerance``, ``family``, ``ramp_s``, ``ratio``, ``spacing_s``,
-            ``kappa``, ``f_hz``, ``zeta``, ``evaluations``, ``baseline_seconds``, ``settle_s``
+            ``kappa``, ``params`` (the family's unknowns), ``f_hz``, ``zeta``, ``evaluations``,
+            ``baseline_seconds``, ``settle_s``
             and ``baselines``: {rigid, zv, zvd} each with ``duration_s``, ``residual``,
             ``peak``, ``meets`` and ``shorter_by`` (the design's saving, None where the baseline
             misses).
@@ -293,6 +295,7 @@ class MoveDesign:
             "ratio": self.ratio,
             "spacing_s": self.spacing_s,
             "kappa": self.kappa,
+            "params": list(self.params),
             "f_hz": self.f_hz,
             "zeta": self.zeta,
             "evaluations": len(self.evaluations),
