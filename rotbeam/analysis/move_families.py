@@ -1,19 +1,11 @@
 """The families of candidate moves the motion design searches, and each one's unknowns.
 
-A family is a shape of move with two or four unknowns that the search moves until the first
-mode's complex amplitude after the move vanishes on the inner model:
-
-- ``zv``, ``zvd``: the rigid-body time-optimal move at kappa times the acceleration limit,
-  convolved with a train of the ZV (1, K) or ZVD (1, 2K, K^2) pattern; unknowns the spacing s
-  and log K.
-- ``zv2``: two ZV-pattern trains convolved (four impulses), for a box of beams; unknowns
-  s_1, log K_1, s_2, log K_2, started at s (1 + spread) and s (1 - spread).
-- ``pulses``: a change of speed as two pulses at the acceleration limit with a coast between
-  them; unknowns the coast and the first pulse's share of the change.
-
-Any family may also be convolved with a ZV-pattern train at the second mode (``+m2``); its
-spacing s_m2 and log K_m2 are two more unknowns, last, and the second mode's amplitude two
-more equations.  Why each family and where it wins: docs/design.md.
+``zv``, ``zvd``: the rigid-body time-optimal move at kappa times the acceleration limit,
+convolved with a ZV (1, K) or ZVD (1, 2K, K^2) train; unknowns s, log K.  ``zv2`` (a box of
+beams): two ZV trains convolved; unknowns s_1, log K_1, s_2, log K_2.  ``pulses`` (a change of
+speed): two pulses at the acceleration limit and a coast; unknowns the coast and the first
+pulse's share.  Any family may also be convolved with a ZV train at the second mode (``+m2``):
+two more unknowns, last.  Why each family and where it wins: docs/design.md.
 """
 
 from __future__ import annotations
