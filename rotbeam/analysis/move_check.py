@@ -192,14 +192,15 @@ def write_move_csv(path: str | Path, t: np.ndarray, omega: np.ndarray) -> None:
     path.write_text("t,omega\n" + rows + "\n")
 
 
-def ringing(check: MoveCheck, f_hz: tuple[float, float], decay: float) -> complex:
-    """The first mode's complex amplitude in the observable after the move.
+def ringing(check: MoveCheck, f_hz: tuple[float, float], decay: float) -> tuple[complex, complex]:
+    """The first two modes' complex amplitudes in the observable after the move.
 
     A least-squares fit of the samples after the move by
     Re(C_1 exp(i w_1 t) + C_2 exp(i w_2 t)) exp(-decay t) + c, the first two modes of the beam
     turning at the final speed (viscous damping per unit length decays both at one rate), t
-    from the move's end.  C_1 is what the search drives to zero: its modulus is the first
-    mode's residual, its phase says which way the spacing and the amplitudes move it.
+    from the move's end.  C_1 (and, for a family with a second-mode train, C_2) is what the
+    search drives to zero: its modulus is the mode's residual, its phase says which way the
+    unknowns move it.
 
     Parameters
     ----------
@@ -212,13 +213,13 @@ def ringing(check: MoveCheck, f_hz: tuple[float, float], decay: float) -> comple
 
     Returns
     -------
-    complex
-        C_1 (NaN where fewer than eight samples follow the move).
+    tuple of complex
+        C_1, C_2 (NaN where fewer than eight samples follow the move).
     """
     after = check.t_s > check.duration_s
     t = check.t_s[after] - check.duration_s
     if t.size < 8:
-        return complex(math.nan, math.nan)
+        return complex(math.nan, math.nan), complex(math.nan, math.nan)
     env = np.exp(-decay * t)
     cols = []
     for f in f_hz:
@@ -226,4 +227,4 @@ def ringing(check: MoveCheck, f_hz: tuple[float, float], decay: float) -> comple
         cols += [env * np.cos(w * t), -env * np.sin(w * t)]
     basis = np.column_stack([*cols, np.ones_like(t)])
     coef = np.linalg.lstsq(basis, check.values[after], rcond=None)[0]
-    return complex(coef[0], coef[1])
+    return complex(coef[0], coef[1]), complex(coef[2], coef[3])

@@ -1,13 +1,14 @@
 """The fastest move within limits that leaves the beam still: motion design with input-shaping
 baselines.
 
-A rest-to-rest slew through an angle, or a change from one steady speed to another, is the
-rigid-body time-optimal move (bang-coast-bang, with a jerk limit its S-curve) convolved with a
-two- or three-impulse train (`rotbeam.analysis.shapers`) whose spacing is searched on the beam
-itself, its acceleration and jerk raised as far as the limits allow where the shaped pulses do
-not overlap.  The spacing is found on the modal reduced model (two modes) and the move is then
-run on the full model at the scene's grid, whose residual is the one reported.  Why this family
-and this search, and what they cost: docs/design.md.
+A rest-to-rest slew through an angle, or a change from one steady speed to another, is sought
+in families of moves (`rotbeam.analysis.move_families`): the rigid-body time-optimal move
+convolved with a ZV- or ZVD-pattern train (with a box of beams, two ZV trains), its
+acceleration raised as far as the limits allow where the shaped pulses do not overlap; for a
+change of speed also two pulses and a coast; each optionally convolved with a train at the
+second mode.  The unknowns are found on the modal reduced model (two modes) and the move is
+then run on the full model at the scene's grid, whose residual is the one reported.  Why these
+families and this search, and what they cost: docs/design.md.
 """
 
 from __future__ import annotations
@@ -35,7 +36,8 @@ from .move_check import (
     ringing,
     write_move_csv,
 )
-from .shapers import KINDS, decay_ratio, for_mode, shape, train
+from .move_families import SHARE_MIN, Family, family_motion, pulses_start
+from .shapers import KINDS, decay_ratio, for_mode, shape
 
 #: modes of the inner model (the modal reduced model; 2 modes: within 1e-4 L of the full
 #: model's residual on the reference beam, docs/design.md)
@@ -60,10 +62,15 @@ LOG_RATIO_MAX = 1.5
 #: finite-difference steps of the first Jacobian: a share of the spacing, and of log K
 STEP_SPACING = 0.02
 STEP_RATIO = 0.03
-#: secant (Broyden) steps on the first mode's amplitude, at most, and the shortening step: the
-#: spacing tried SHORTEN shorter than the root, where the residual has slack
+#: secant (Broyden) steps on the first mode's amplitude, at most, and the shortening steps: the
+#: spacing (or coast) tried SHORTEN of the first mode's half period shorter than the root,
+#: the second-mode train's spacing SHORTEN_SECOND of its own, where the residual has slack
 MAX_NEWTON = 8
+#: with more equations than unknowns, two steps in a row that lower the amplitudes' norm by
+#: less than 1 - STALL (or raise it) end the secant steps
+STALL = 0.8
 SHORTEN = 0.03
+SHORTEN_SECOND = 0.5
 #: the secant steps' trust region: a share of the spacing, and of log K
 TRUST_SPACING = 0.1
 TRUST_RATIO = 0.3
@@ -75,24 +82,41 @@ XTOL = 5e-4
 MAX_ROOT = 8
 #: a tolerance below RESOLVE * numerics.rtol * peak is below what the run resolves
 RESOLVE = 100.0
-#: acceleration scalings tried, from the largest (1 / the train's largest amplitude) down to 1
-KAPPA_STEPS = 32
 
 
 @dataclass(frozen=True)
 class Evaluation:
-    """One candidate of the search: its family, the train's spacing and amplitude ratio K, the
-    scaling, its duration, its inner residual and first-mode amplitude (`ringing`)."""
+    """One candidate of the search: its family and unknowns, the acceleration's factor, its
+    duration, its inner residual (the largest at the family's targets) and the first mode's
+    amplitude there (`ringing`), and its wall time."""
 
-    kind: str
-    ramp_s: float
-    spacing_s: float
-    ratio: float
+    family: Family
+    params: tuple[float, ...]
     kappa: float
     duration_s: float
     residual: float
-    amplitude: complex
+    amplitudes: tuple[complex, ...]
     seconds: float
+
+    @property
+    def kind(self) -> str:
+        """The family's name ("zv", "zvd", "zv2", "pulses", "+m2" with a second-mode train)."""
+        return self.family.name
+
+    @property
+    def ramp_s(self) -> float:
+        """The family's ramp [s]."""
+        return self.family.ramp
+
+    @property
+    def spacing_s(self) -> float:
+        """The first unknown: the (first) train's spacing, or the coast between two pulses [s]."""
+        return self.params[0]
+
+    @property
+    def ratio(self) -> float:
+        """The (first) train's amplitude ratio K, or the first pulse's share of the change."""
+        return self.params[1] if self.family.kind == "pulses" else math.exp(self.params[1])
 
 
 @dataclass
@@ -119,14 +143,19 @@ class MoveDesign:
     baselines : dict
         "rigid", "zv", "zvd" -> MoveCheck on the full model (empty when not asked for).
     kind : str
-        The design's impulse train ("zv" or "zvd" family).
+        The design's family: "zv", "zvd" (a train of that pattern), "zv2" (two ZV trains, one
+        at each end of a box's frequencies), "pulses" (a change of speed as two pulses and a
+        coast); "+m2" where a ZV train at the second mode is convolved too.
     ratio : float
-        Its train's amplitude ratio K (searched with the spacing; the textbook shaper's is
-        exp(-zeta pi / sqrt(1 - zeta^2))).
+        Its (first) train's amplitude ratio K (searched with the spacing; the textbook shaper's
+        is exp(-zeta pi / sqrt(1 - zeta^2))), or for two pulses the first one's share of the
+        change of speed.
+    params : tuple of float
+        The family's unknowns as searched (`rotbeam.analysis.move_families`).
     ramp_s : float
         How long its acceleration takes to ramp to the limit [s].
     spacing_s : float
-        Its impulses' spacing [s].
+        Its (first) train's spacing, or for two pulses the coast between them [s].
     kappa : float
         The factor on the acceleration (and jerk) limit of the rigid move it shapes.
     f_hz, zeta : float
@@ -157,6 +186,7 @@ class MoveDesign:
     baseline_motions: dict[str, Motion] = field(default_factory=dict)
     kind: str = ""
     ratio: float = math.nan
+    params: tuple[float, ...] = ()
     ramp_s: float = math.nan
     spacing_s: float = math.nan
     kappa: float = math.nan
@@ -239,7 +269,8 @@ class MoveDesign:
             ``angle_rad`` (integrated), ``robust_residual`` (worst over the box, or None),
             ``profile_csv``, ``seconds`` (the search's), ``found``, ``message``,
             ``observable``, ``tolerance``, ``family``, ``ramp_s``, ``ratio``, ``spacing_s``,
-            ``kappa``, ``f_hz``, ``zeta``, ``evaluations``, ``baseline_seconds``, ``settle_s``
+            ``kappa``, ``params`` (the family's unknowns), ``f_hz``, ``zeta``, ``evaluations``,
+            ``baseline_seconds``, ``settle_s``
             and ``baselines``: {rigid, zv, zvd} each with ``duration_s``, ``residual``,
             ``peak``, ``meets`` and ``shorter_by`` (the design's saving, None where the baseline
             misses).
@@ -264,6 +295,7 @@ class MoveDesign:
             "ratio": self.ratio,
             "spacing_s": self.spacing_s,
             "kappa": self.kappa,
+            "params": list(self.params),
             "f_hz": self.f_hz,
             "zeta": self.zeta,
             "evaluations": len(self.evaluations),
@@ -468,48 +500,59 @@ def _request(angle, omega_start, omega_end, limits: Limits, residual, observable
 
 
 class _Search:
-    """The search of one request: each family's train on the inner model, the full-model
+    """The search of one request: each family's unknowns on the inner model, the full-model
     checks, and the baselines."""
 
     def __init__(self, scene: Scene, limits: Limits, request: dict, boxed: list,
                  progress: Callable[[str], None] | None, budget: TimeBudget) -> None:  # fmt: skip
-        from ..model.modes import linear_frequencies
-
         self.scene, self.limits, self.request = scene, limits, request
         self.boxed, self.progress, self.budget = boxed, progress, budget
         self.tol = request["residual"]
         self.observable = request["observable"]
         slew = request["angle"] is not None
         base = 0.0 if slew else request["omega_end"]
-        ends = (0.0, limits.max_speed) if slew else (request["omega_start"], request["omega_end"])
+        self.ends = (0.0, limits.max_speed) if slew else (request["omega_start"],
+                                                           request["omega_end"])  # fmt: skip
+        self.speeds = None if slew else (request["omega_start"], request["omega_end"])
         self.f_hz, self.zeta = first_mode(scene, base)
         scenes = [scene] + [s for _, s in boxed]
-        freqs = [first_mode(s, w)[0] for s in scenes for w in ends]
+        freqs = [first_mode(s, w)[0] for s in scenes for w in self.ends]
         self.f_lo, self.f_hi = min(freqs), max(freqs)
         self.settle_s = CHECK_SETTLE_PERIODS / self.f_lo
-        T = scene.beam.T
-        w12 = linear_frequencies(scene.model(), base * T, 2) / T
-        self.modes_hz = (float(w12[0]) / (2 * math.pi), float(w12[1]) / (2 * math.pi))
-        self.decay = self.zeta * float(w12[0])
-        self.nominal = self._inner_scene(scene)
-        self.corners = [self._inner_scene(s) for _, s in boxed]
+        self.modes_hz = _two_modes(scene, base)
+        self.decay = self.zeta * 2 * math.pi * self.modes_hz[0]
+        # the half period met along the move, on the nominal beam and at each corner
+        self.halves = [sum(0.25 / first_mode(s, w)[0] for w in self.ends) for s in scenes]
+        self.f2 = tuple(_two_modes(scene, w)[1] for w in self.ends)
+        self.second_s = 0.25 / self.f2[0] + 0.25 / self.f2[1]
+        self.inner_scenes = [self._inner_scene(s) for s in scenes]
+        self.runs: dict[tuple, tuple[float, tuple[complex, complex]]] = {}
         self.cache: dict[tuple, Evaluation] = {}
-        self.worst_cache: dict[tuple, float] = {}
         self.evaluations: list[Evaluation] = []
         self.motions: dict[tuple, tuple[Motion, float]] = {}
+        #: the last root's spacing over the linear half period: where the next family starts
+        self.shift = 1.0
+        #: family -> its least worst inner residual less its second mode's amplitude
+        self.floors: dict[Family, float] = {}
         self.families = self._families()
 
-    def _families(self) -> list[tuple[str, float]]:
-        """(train, ramp) pairs, shortest first by the move at the half period of the middle
-        frequency: ramps of RAMP_SHARE of the shortest first-mode period (without a jerk
-        limit) or the limit's, and ramps of one second-mode period (if longer)."""
+    def _families(self) -> list[Family]:
+        """The families, shortest first by their move at the linear starting unknowns: ZV and
+        ZVD patterns (with a box, two ZV trains at the box's ends instead of ZVD, which they
+        hold at equal spacings; for a change of speed, also two pulses), each with ramps of
+        RAMP_SHARE of the shortest first-mode period (without a jerk limit) or the limit's, and
+        ramps of one second-mode period (if longer), each with and without a ZV train at the
+        second mode."""
         a, j = self.limits.max_accel, self.limits.max_jerk
         short = RAMP_SHARE / self.f_hi if j is None else a / j
         ramps = sorted({short, max(short, 1.0 / self.modes_hz[1])})
-        mid = 0.25 / self.f_lo + 0.25 / self.f_hi
-        fams = [(kind, ramp) for kind in KINDS for ramp in ramps]
-        K = decay_ratio(self.zeta)
-        return sorted(fams, key=lambda f: self.candidate(f[0], f[1], mid, K)[0].duration)
+        kinds = ["zv", "zv2" if self.boxed else "zvd"] + (["pulses"] if self.speeds else [])
+        # zv2's zeros start at the box's ends
+        spread = (max(self.halves) - min(self.halves)) / (2 * self.halves[0])
+        second = {"second_s": self.second_s, "second_ratio": math.exp(-self.decay * self.second_s)}
+        fams = [Family(kind, ramp, spread=spread if kind == "zv2" else 0.0, **extra)
+                for kind in kinds for ramp in ramps for extra in ({}, second)]  # fmt: skip
+        return sorted(fams, key=lambda f: self.candidate(f, self.start(f, True))[0].duration)
 
     # --- the family ------------------------------------------------------------------------
     def rigid(self, limits: Limits) -> Motion:
@@ -519,29 +562,65 @@ class _Search:
             return rigid_slew(r["angle"], limits)
         return rigid_speed_change(r["omega_start"], r["omega_end"], limits)
 
-    def candidate(self, kind: str, ramp: float, spacing: float,
-                  ratio: float) -> tuple[Motion, float]:  # fmt: skip
-        """The rigid move at kappa times the acceleration limit (its ramps `ramp` long), shaped
-        by the `kind` train of this spacing and amplitude ratio: the largest kappa whose shaped
-        move keeps every limit."""
-        key = (kind, ramp, spacing, ratio)
+    def candidate(self, fam: Family, params: tuple[float, ...]) -> tuple[Motion, float]:
+        """The family's move at these unknowns and its acceleration's factor kappa."""
+        key = (fam, params)
         if key not in self.motions:
-            a = self.limits.max_accel
-            own = Limits(self.limits.max_speed, a, a / ramp)
-            impulses = train(kind, spacing, ratio)
-            top = 1.0 / max(impulses.amplitudes)
-            found = (shape(self.rigid(own), impulses), 1.0)
-            for kappa in np.linspace(top, 1.0, KAPPA_STEPS):
-                m = shape(self.rigid(own.scaled(float(kappa))), impulses)
-                if m.within(self.limits):
-                    found = (m, float(kappa))
-                    break
-            self.motions[key] = found
+            self.motions[key] = family_motion(fam, params, self.rigid, self.limits, self.speeds)
         return self.motions[key]
 
     def motion_of(self, ev: Evaluation) -> Motion:
         """The move of one evaluation."""
-        return self.candidate(ev.kind, ev.ramp_s, ev.spacing_s, ev.ratio)[0]
+        return self.candidate(ev.family, ev.params)[0]
+
+    def targets(self, fam: Family) -> list[int]:
+        """The inner scenes whose first-mode amplitude the family cancels: the nominal beam's,
+        or (zv2) the box's corners of the longest and of the shortest half period (four
+        equations, four unknowns: zero there and, between, to first order).  A second-mode
+        train cancels the second mode's amplitude at the first of them."""
+        if fam.kind != "zv2":
+            return [0]
+        corner = self.halves[1:]
+        return [1 + int(np.argmax(corner)), 1 + int(np.argmin(corner))]
+
+    def start(self, fam: Family, linear: bool = False) -> tuple[float, ...]:
+        """The unknowns the search starts from: the half period met along the move, times the
+        shift of the last train's root from it, and the model's zeta's K (zv2: the ZVD
+        root's, or with `linear` the linear start without a run, its spacing split into
+        s (1 +- spread), zeros at the box's longest and shortest half periods);
+        for two pulses, the coast and share that leave a linear oscillator of the middle
+        frequency still (docs/design.md)."""
+        half, logk = self.shift * self.halves[0], math.log(decay_ratio(self.zeta))
+        second = (fam.second_s, math.log(fam.second_ratio)) if fam.second_s > 0 else ()
+        if fam.kind == "zv2":  # the ZVD root (zv2 at equal spacings), split
+            zvd = replace(fam, kind="zvd", spread=0.0)
+            root = self.start(zvd) if linear else self._root(zvd)[0].params
+            s1, s2 = root[0] * (1 + fam.spread), root[0] * (1 - fam.spread)
+            return (s1, root[1], s2, root[1], *root[2:])
+        if fam.kind != "pulses":
+            return (half, logk, *second)
+        T = abs(self.speeds[1] - self.speeds[0]) / self.limits.max_accel
+        return (*pulses_start(T, 2.0 * half, fam.ramp), *second)
+
+    def _scales(self, fam: Family) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """The unknowns' finite-difference steps, trust region and bounds."""
+        half, s2 = self.halves[0], self.second_s
+        lo_s, hi_s = (1 - BRACKET) * 0.5 / self.f_hi, (1 + BRACKET) * 0.5 / self.f_lo
+        pairs = [(half, lo_s, hi_s)] * (2 if fam.kind == "zv2" else 1)
+        if fam.kind == "pulses":
+            pairs = []
+        if fam.second_s > 0:
+            lo2, hi2 = (1 - BRACKET) * 0.5 / max(self.f2), (1 + BRACKET) * 0.5 / min(self.f2)
+            pairs.append((s2, lo2, hi2))
+        step = [v for h, _, _ in pairs for v in (STEP_SPACING * h, STEP_RATIO)]
+        trust = [v for h, _, _ in pairs for v in (TRUST_SPACING * h, TRUST_RATIO)]
+        lo = [v for _, a, _ in pairs for v in (a, -LOG_RATIO_MAX)]
+        hi = [v for _, _, b in pairs for v in (b, LOG_RATIO_MAX)]
+        if fam.kind == "pulses":  # the coast and the first pulse's share
+            step = [STEP_SPACING * half, STEP_RATIO, *step]
+            trust = [TRUST_SPACING * half, TRUST_RATIO, *trust]
+            lo, hi = [0.0, SHARE_MIN, *lo], [2.0 / self.f_lo, 1 - SHARE_MIN, *hi]
+        return np.array(step), np.array(trust), np.array(lo), np.array(hi)
 
     # --- runs ------------------------------------------------------------------------------
     def _inner_scene(self, scene: Scene) -> Scene:
@@ -565,40 +644,51 @@ class _Search:
             raise _Cut
         return c
 
-    def inner(self, kind: str, ramp: float, spacing: float, ratio: float) -> Evaluation:
-        """The inner model's residual and first-mode amplitude of one candidate (nominal)."""
-        key = (kind, ramp, float(spacing), float(ratio))
+    def _inner_run(self, index: int, fam: Family,
+                   params: tuple[float, ...]) -> tuple[float, complex]:  # fmt: skip
+        """The inner residual and first-mode amplitude of a candidate on inner scene `index`
+        (0: the nominal beam; then the box's corners)."""
+        key = (index, fam, params)
+        if key not in self.runs:
+            c = self._run(self.inner_scenes[index], self.candidate(fam, params)[0])
+            if not c.converged:
+                self.runs[key] = (math.inf, (complex(math.inf, 0), complex(math.inf, 0)))
+            else:
+                if index == 0:
+                    self._resolves(c.peak)
+                self.runs[key] = (c.residual, ringing(c, self.modes_hz, self.decay))
+        return self.runs[key]
+
+    def inner(self, fam: Family, params: tuple[float, ...]) -> Evaluation:
+        """A candidate on the inner model at the family's targets: the largest residual there
+        and the first mode's amplitudes."""
+        params = tuple(float(p) for p in params)
+        key = (fam, params)
         if key in self.cache:
             return self.cache[key]
-        motion, kappa = self.candidate(*key)
+        motion, kappa = self.candidate(fam, params)
         t0 = time.perf_counter()
-        c = self._run(self.nominal, motion)
-        residual = c.residual if c.converged else math.inf
-        if c.converged:
-            self._resolves(c.peak)
-        amp = ringing(c, self.modes_hz, self.decay) if c.converged else complex(math.inf, 0)
-        ev = Evaluation(kind, ramp, float(spacing), float(ratio), kappa, motion.duration,
-                        residual, amp, time.perf_counter() - t0)  # fmt: skip
+        got = [self._inner_run(i, fam, params) for i in self.targets(fam)]
+        amps = [a[0] for _, a in got] + ([got[0][1][1]] if fam.second_s > 0 else [])
+        ev = Evaluation(fam, params, kappa, motion.duration, max(r for r, _ in got),
+                        tuple(amps), time.perf_counter() - t0)  # fmt: skip
         self.cache[key] = ev
         self.evaluations.append(ev)
         if self.progress is not None:
-            self.progress(f"{kind} spacing {spacing * 1e3:.3f} ms, K {ratio:.3g}, ramp "
-                          f"{ramp * 1e3:.3g} ms: T {motion.duration:.4g} s, residual "
-                          f"{residual:.3g}")  # fmt: skip
+            shown = ", ".join(f"{p:.4g}" for p in params)
+            self.progress(f"{fam.name} ({shown}), ramp {fam.ramp * 1e3:.3g} ms: T "
+                          f"{motion.duration:.4g} s, residual {ev.residual:.3g}")  # fmt: skip
         return ev
 
     def worst(self, ev: Evaluation) -> float:
-        """The candidate's inner residual, the worst over the box's corners with one."""
-        key = (ev.kind, ev.ramp_s, ev.spacing_s, ev.ratio)
-        if key not in self.worst_cache:
-            worst = ev.residual
-            for sc in self.corners:
-                if worst > self.tol:
-                    break
-                c = self._run(sc, self.motion_of(ev))
-                worst = max(worst, c.residual if c.converged else math.inf)
-            self.worst_cache[key] = worst
-        return self.worst_cache[key]
+        """The candidate's inner residual, the worst over the nominal beam and the box's corners
+        with one (stopping at the first above the tolerance)."""
+        worst = ev.residual
+        for index in range(len(self.inner_scenes)):
+            if worst > self.tol:
+                break
+            worst = max(worst, self._inner_run(index, ev.family, ev.params)[0])
+        return worst
 
     def _resolves(self, peak: float) -> None:
         """Refuse a tolerance below what the run resolves (RESOLVE * rtol * peak)."""
@@ -622,14 +712,16 @@ class _Search:
 
     # --- the search ------------------------------------------------------------------------
     def design(self) -> MoveDesign:
-        """Each family in turn, shortest first: the train that cancels the first mode on the
+        """Each family in turn, shortest first: the unknowns that cancel the first mode on the
         inner model, shortened where the tolerance leaves slack, checked on the full model."""
         out = MoveDesign(False, "", self.scene, self.request, f_hz=self.f_hz, zeta=self.zeta,
                          settle_s=self.settle_s)  # fmt: skip
         best: float | None = None  # the least full-model residual so far
         try:
-            for kind, ramp in self.families:
-                for ev in self._search(kind, ramp):
+            for fam in self.families:
+                if out.found:
+                    break
+                for ev in self._search(fam):
                     motion = self.motion_of(ev)
                     if out.found and motion.duration >= out.duration_s:
                         continue
@@ -643,16 +735,16 @@ class _Search:
                         out.corner_residuals = corner
                         out.robust_residual = max(corner.values()) if corner else None
                         out.found = out.found or meets
-                if out.found:
-                    box = (
-                        ""
-                        if out.robust_residual is None
-                        else f", {out.robust_residual:.3g} at the worst corner of the box"
-                    )
-                    out.message = (f"{out.kind} family, spacing {out.spacing_s * 1e3:.4g} ms, "
-                                   f"ramps {out.ramp_s * 1e3:.3g} ms: residual "
-                                   f"{out.check.residual:.3g}{box} <= {self.tol:g}")  # fmt: skip
-                    return self._done(out)
+            if out.found:
+                box = (
+                    ""
+                    if out.robust_residual is None
+                    else f", {out.robust_residual:.3g} at the worst corner of the box"
+                )
+                out.message = (f"{out.kind} family ({self._describe(out)}), ramps "
+                               f"{out.ramp_s * 1e3:.3g} ms: residual {out.check.residual:.3g}"
+                               f"{box} <= {self.tol:g}")  # fmt: skip
+                return self._done(out)
         except _Cut:
             out.message = self._cut_message(out)
             return self._done(out)
@@ -669,10 +761,17 @@ class _Search:
                            f"({out.kind} family)")  # fmt: skip
         return self._done(out)
 
+    @staticmethod
+    def _describe(out: MoveDesign) -> str:
+        """The design's unknowns in words."""
+        if out.kind.startswith("pulses"):
+            return f"coast {out.spacing_s * 1e3:.4g} ms, first pulse {out.ratio:.3g} of the change"
+        return f"spacing {out.spacing_s * 1e3:.4g} ms"
+
     def _adopt(self, out: MoveDesign, ev: Evaluation, check: MoveCheck | None) -> None:
         out.motion, out.check = self.motion_of(ev), check
         out.kind, out.ramp_s, out.spacing_s, out.kappa = ev.kind, ev.ramp_s, ev.spacing_s, ev.kappa
-        out.ratio = ev.ratio
+        out.ratio, out.params = ev.ratio, ev.params
 
     def _corners(self, motion: Motion) -> dict[str, float]:
         """The full model's residual at the box's corners, in turn until one misses."""
@@ -703,37 +802,75 @@ class _Search:
                     f"({ev.kind} family)")  # fmt: skip
         return f"{done} before the first run"
 
-    def _search(self, kind: str, ramp: float) -> list[Evaluation]:
-        """The family's candidates worth a full-model check, shortest first.
+    def _search(self, fam: Family) -> list[Evaluation]:
+        """The family's candidates worth a full-model check, shortest first: its root
+        (`_root`), and where the least residual leaves slack (below INNER_MARGIN of the
+        tolerance, at every corner of a box) the shortest first unknown (a spacing or the coast)
+        at that level, down to SHORTEN of a half period shorter.  A family with a second-mode
+        train is not searched where the same family without it misses by more than what its
+        second mode leaves (the train cannot help there)."""
+        if fam.second_s > 0:
+            base = replace(fam, second_s=0.0, second_ratio=1.0)
+            if base in self.floors and self.floors[base] > INNER_SLACK * self.tol:
+                return []
+        _, lo, _ = self._root(fam)
+        target = INNER_MARGIN * self.tol
+        mine = [e for e in self.evaluations if e.family == fam]
+        least = min(mine, key=lambda e: e.residual)
+        if fam.kind in ("zv", "zvd") and least.residual <= target:
+            self.shift = least.params[0] / self.halves[0]
+        second = abs(self._inner_run(0, fam, least.params)[1][1])
+        self.floors[fam] = self.worst(least) - second
+        if self.worst(least) > INNER_SLACK * self.tol:
+            return []
+        if self.worst(least) > target:
+            return [least]
+        short = self._shorten(fam, least, target, lo)
+        return [short, least] if short is not least else [least]
 
-        Secant (Broyden) steps in (spacing, log K of the train) drive the first mode's complex
-        amplitude after the move to zero on the inner model, from the half period of the middle
-        frequency and the model's zeta's K, its first Jacobian by finite differences.  Where the
-        least residual leaves slack (below INNER_MARGIN of the tolerance, at every corner of a
-        box), the shortest spacing at that level is found between SHORTEN shorter and it."""
-        lo, hi = (1 - BRACKET) * 0.5 / self.f_hi, (1 + BRACKET) * 0.5 / self.f_lo
-        x = np.array([0.25 / self.f_lo + 0.25 / self.f_hi, math.log(decay_ratio(self.zeta))])
-        scale = np.array([STEP_SPACING * x[0], STEP_RATIO])
-        trust = np.array([TRUST_SPACING * x[0], TRUST_RATIO])
+    def _root(self, fam: Family) -> tuple[Evaluation, np.ndarray, np.ndarray]:
+        """The family's least-residual candidate, and its unknowns' bounds.
+
+        Secant (Broyden) steps in the family's unknowns drive the first mode's complex
+        amplitudes after the move (at its targets; with a second-mode train, the second mode's
+        too) to zero on the inner model, by least squares where there are more equations than
+        unknowns, from `start`, the first Jacobian by finite differences; each step within a
+        trust region and taken back half way once if the residual grows; a secant step that
+        does not lower the amplitudes' norm is not taken, and the Jacobian is taken again by
+        finite differences where it stands (once per point); with more equations
+        than unknowns, until two steps in a row lower their norm by less than 1 - STALL.  Runs
+        are cached: a second call costs nothing."""
+        x = np.array(self.start(fam))
+        scale, trust, lo, hi = self._scales(fam)
+        x = np.clip(x, lo, hi)
 
         def f(ev: Evaluation) -> np.ndarray:
-            return np.array([ev.amplitude.real, ev.amplitude.imag])
+            return np.array([v for a in ev.amplitudes for v in (a.real, a.imag)])
 
         def run(x: np.ndarray) -> Evaluation:
-            return self.inner(kind, ramp, float(x[0]), math.exp(float(x[1])))
+            return self.inner(fam, tuple(x))
+
+        def jacobian(x: np.ndarray, ev: Evaluation) -> np.ndarray:
+            cols = []
+            for k in range(x.size):
+                d = np.zeros(x.size)
+                d[k] = scale[k] if x[k] + scale[k] <= hi[k] else -scale[k]
+                cols.append((f(run(x + d)) - f(ev)) / d[k])
+            return np.column_stack(cols)
 
         ev = run(x)
-        jac = np.column_stack([(f(run(x + d)) - f(ev)) / h
-                               for d, h in ((np.array([scale[0], 0.0]), scale[0]),
-                                            (np.array([0.0, scale[1]]), scale[1]))])  # fmt: skip
+        jac, fresh = jacobian(x, ev), True
         target = INNER_MARGIN * self.tol
+        stalls = 0
         for _ in range(MAX_NEWTON):
             if not np.all(np.isfinite(f(ev))) or ev.residual <= 0.2 * target:
                 break
+            if np.max(np.abs(f(ev))) <= 0.2 * target:  # solved: the rest is the family's floor
+                break
             step = np.linalg.lstsq(jac, -f(ev), rcond=None)[0]
             step *= min(1.0, float(np.min(trust / np.maximum(np.abs(step), 1e-300))))
-            new = np.clip(x + step, [lo, -LOG_RATIO_MAX], [hi, LOG_RATIO_MAX])
-            if np.all(np.abs(new - x) < np.array([XTOL * x[0], 1e-5])):
+            new = np.clip(x + step, lo, hi)
+            if np.all(np.abs(new - x) < XTOL * scale / STEP_SPACING):
                 break
             nxt = run(new)
             if nxt.residual > ev.residual:  # a step too far: back half way once
@@ -742,41 +879,51 @@ class _Search:
                     (half, x + 0.5 * (new - x)) if half.residual < nxt.residual else (nxt, new)
                 )
             dx, df = new - x, f(nxt) - f(ev)
-            if np.all(np.isfinite(df)):
+            if np.all(np.isfinite(df)) and float(dx @ dx) > 0:
                 jac = jac + np.outer(df - jac @ dx, dx) / float(dx @ dx)
-            x, ev = new, nxt
-        mine = [e for e in self.evaluations if (e.kind, e.ramp_s) == (kind, ramp)]
-        least = min(mine, key=lambda e: e.residual)
-        if self.worst(least) > INNER_SLACK * self.tol:
-            return []
-        if self.worst(least) > target:
-            return [least]
-        short = self._shorten(kind, ramp, least, target)
-        return [short, least] if short is not least else [least]
+            if np.linalg.norm(f(nxt)) >= np.linalg.norm(f(ev)) and not fresh:
+                jac, fresh = jacobian(x, ev), True  # the secant went astray: differences again
+                continue
+            slow = np.linalg.norm(f(nxt)) > STALL * np.linalg.norm(f(ev))
+            stalls = stalls + 1 if slow and jac.shape[0] > jac.shape[1] else 0
+            x, ev, fresh = new, nxt, False
+            if stalls >= 2:  # least squares (more equations than unknowns) at its floor
+                break
+        mine = [e for e in self.evaluations if e.family == fam]
+        return min(mine, key=lambda e: e.residual), lo, hi
 
-    def _shorten(self, kind: str, ramp: float, least: Evaluation, target: float) -> Evaluation:
-        """The shortest spacing (the train's K kept) whose residual is within target."""
+    def _shorten(self, fam: Family, least: Evaluation, target: float,
+                 lowest: np.ndarray) -> Evaluation:  # fmt: skip
+        """The shortest move whose worst residual is within target along one of the family's
+        spacings (the first unknown, a spacing or the coast; the second-mode train's spacing),
+        the other unknowns kept at the root's: the first down to SHORTEN of the first mode's
+        half period shorter, the second-mode train's to SHORTEN_SECOND of its own (a train
+        shorter than the second mode's half period cancels a share of it), by a root finder;
+        the shortest of them."""
         from scipy.optimize import brentq
 
-        ratio, s1 = least.ratio, least.spacing_s
-        s0 = s1 * (1 - SHORTEN)
+        knobs = [0] + ([len(least.params) - 2] if fam.second_s > 0 else [])
+        found = [least]
+        for k in knobs:
+            x = list(least.params)
+            half = self.halves[0] if k == 0 else self.second_s
+            s1 = x[k]
+            s0 = max(float(lowest[k]), s1 - (SHORTEN if k == 0 else SHORTEN_SECOND) * half)
 
-        def g(s: float) -> float:
-            return self.worst(self.inner(kind, ramp, s, ratio)) - target
+            def at(v: float, k: int = k, x: list = x) -> Evaluation:
+                return self.inner(fam, tuple(x[:k] + [v] + x[k + 1 :]))
 
-        if g(s0) > 0:
-            try:
-                brentq(g, s0, s1, xtol=XTOL * s1, maxiter=MAX_ROOT)
-            except RuntimeError:  # not converged in MAX_ROOT: the evaluations so far stand
-                pass
-        ok = [
-            e
-            for e in self.evaluations
-            if (e.kind, e.ramp_s, e.ratio) == (kind, ramp, ratio)
-            and self.worst_cache.get((kind, ramp, e.spacing_s, ratio), math.inf) <= target
-        ]
-        ok.append(least)
-        return min(ok, key=lambda e: e.duration_s)
+            if s0 < s1 and self.worst(at(s0)) > target:
+                try:
+                    brentq(lambda v: self.worst(at(v)) - target, s0, s1,
+                           xtol=XTOL * half, maxiter=MAX_ROOT)  # fmt: skip
+                except RuntimeError:  # not converged in MAX_ROOT: the evaluations so far stand
+                    pass
+            others = least.params[:k] + least.params[k + 1 :]
+            found += [e for e in self.evaluations if e.family == fam
+                      and e.params[:k] + e.params[k + 1 :] == others
+                      and self.worst(e) <= target]  # fmt: skip
+        return min(found, key=lambda e: e.duration_s)
 
     # --- baselines -------------------------------------------------------------------------
     def baselines(self) -> tuple[dict[str, MoveCheck], dict[str, Motion]]:
@@ -792,3 +939,12 @@ class _Search:
                 self.progress(f"baseline {name}: T {m.duration:.4g} s, residual {c.residual:.3g}")
             out[name] = c
         return out, motions
+
+
+def _two_modes(scene: Scene, omega: float) -> tuple[float, float]:
+    """The first two linear frequencies of the beam turning steadily at omega [Hz]."""
+    from ..model.modes import linear_frequencies
+
+    T = scene.beam.T
+    w = linear_frequencies(scene.model(), omega * T, 2) / T
+    return float(w[0]) / (2 * math.pi), float(w[1]) / (2 * math.pi)

@@ -147,7 +147,8 @@ def _table(out: dict) -> None:
         show.line("robust_residual", f"{out['robust_residual']:.3g} (worst over the box)")
     if out["profile_csv"]:
         show.line("profile_csv", out["profile_csv"])
-    show.line("family", f"{out['family']}, spacing {1e3 * out['spacing_s']:.4g} ms, ramps "
+    first = "coast" if out["family"].startswith("pulses") else "spacing"
+    show.line("family", f"{out['family']}, {first} {1e3 * out['spacing_s']:.4g} ms, ramps "
               f"{1e3 * out['ramp_s']:.3g} ms, acceleration x{out['kappa']:.3g}")  # fmt: skip
     show.line("first mode", f"{out['f_hz']:.4g} Hz, zeta {out['zeta']:.3g} (the baselines')")
     show.line("seconds", f"{out['seconds']:.3g} search ({out['evaluations']} inner runs), "
