@@ -4,7 +4,6 @@ the lines in parallel on the machine's cores; the f_d* boundary through the grid
 from __future__ import annotations
 
 import argparse
-import math
 from pathlib import Path
 
 import numpy as np
@@ -201,11 +200,7 @@ def run(args: argparse.Namespace) -> int:
 
 def _print(result, summary: dict) -> None:
     """The boundary line by line, then the summary."""
-    widths = [max(len(head), 12) for _, head, _ in TABLE]
-    print("  ".join(f"{head:>{w}s}" for (_, head, _), w in zip(TABLE, widths, strict=True)))
-    for row in result.boundary.to_dict(orient="records"):
-        cells = [_cell(row[key], fmt) for key, _, fmt in TABLE]
-        print("  ".join(f"{c:>{w}s}" for c, w in zip(cells, widths, strict=True)))
+    show.table(result.boundary.to_dict(orient="records"), TABLE)
     show.line("threshold", f"{summary['threshold']:g} (f_d*: Delta RMS reaches it on the line; "
               f"nan: not within the line)")  # fmt: skip
     show.line("points", f"{summary['ran']} of {summary['points']} ran, {summary['converged']} "
@@ -217,9 +212,3 @@ def _print(result, summary: dict) -> None:
               f"a second, {summary['workers']} processes)")  # fmt: skip
     if summary["message"]:
         show.line("budget", summary["message"])
-
-
-def _cell(value, fmt: str) -> str:
-    if fmt == "d":
-        return str(int(value))
-    return format(value, fmt) if math.isfinite(value) else "nan"

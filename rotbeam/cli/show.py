@@ -1,8 +1,11 @@
-"""What the commands print: aligned name-value lines, the chosen effects, the uncertainty."""
+"""What the commands print: aligned name-value lines, tables, the chosen effects, the
+uncertainty."""
 
 from __future__ import annotations
 
 import json
+import math
+from collections.abc import Iterable
 from typing import Any
 
 WIDTH = 16
@@ -35,6 +38,33 @@ def values(out: dict[str, Any], keys: tuple[str, ...], fmt: str = ".6g") -> None
     """
     for key in keys:
         line(key, format(out[key], fmt))
+
+
+def table(rows: Iterable[dict[str, Any]], columns: tuple[tuple[str, str, str], ...]) -> None:
+    """Print rows as a right-aligned table under a heading line.
+
+    Parameters
+    ----------
+    rows : iterable of dict
+        The rows, each with every column's key.
+    columns : tuple
+        (row key, heading, format) of each column: a format spec, "d" (an integer) or "s"
+        (the value as text); a number that is not finite prints as nan.
+    """
+    widths = [max(len(head), 12) for _, head, _ in columns]
+    print("  ".join(f"{head:>{w}s}" for (_, head, _), w in zip(columns, widths, strict=True)))
+    for row in rows:
+        cells = [_cell(row[key], fmt) for key, _, fmt in columns]
+        print("  ".join(f"{c:>{w}s}" for c, w in zip(cells, widths, strict=True)))
+
+
+def _cell(value: Any, fmt: str) -> str:
+    """One table cell as text."""
+    if fmt == "s" or value is None:
+        return str(value)
+    if not math.isfinite(value):
+        return "nan"
+    return str(int(value)) if fmt == "d" else format(value, fmt)
 
 
 def as_json(out: dict[str, Any]) -> None:

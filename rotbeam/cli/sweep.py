@@ -134,11 +134,7 @@ def _first(rows: list[dict], key: str) -> float:
 
 def _print(rows: list[dict], line) -> None:
     """The table, the failed points' reasons and the line's cost."""
-    widths = [max(len(head), 12) for _, head, _ in TABLE]
-    print("  ".join(f"{head:>{w}s}" for (_, head, _), w in zip(TABLE, widths, strict=True)))
-    for row in rows:
-        cells = [_cell(row[key], fmt) for key, _, fmt in TABLE]
-        print("  ".join(f"{c:>{w}s}" for c, w in zip(cells, widths, strict=True)))
+    show.table(rows, TABLE)
     for row in rows:
         if not row["converged"]:
             show.line(f"f_d {row['f_d']:.6g}", row["message"])
@@ -148,9 +144,3 @@ def _print(rows: list[dict], line) -> None:
               f"({rate:.3g} per second)")  # fmt: skip
     if line.message:
         show.line("budget", line.message)
-
-
-def _cell(value, fmt: str) -> str:
-    if fmt == "s" or value is None:
-        return str(value)
-    return format(value, fmt) if math.isfinite(value) else "nan"
