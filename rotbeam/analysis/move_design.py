@@ -516,13 +516,15 @@ class _Search:
         self.speeds = None if slew else (request["omega_start"], request["omega_end"])
         self.f_hz, self.zeta = first_mode(scene, base)
         scenes = [scene] + [s for _, s in boxed]
-        freqs = [first_mode(s, w)[0] for s in scenes for w in self.ends]
+        # the first frequency at each end of the move, on the nominal beam and at each corner
+        firsts = [[first_mode(s, w)[0] for w in self.ends] for s in scenes]
+        freqs = [f for ends in firsts for f in ends]
         self.f_lo, self.f_hi = min(freqs), max(freqs)
         self.settle_s = CHECK_SETTLE_PERIODS / self.f_lo
         self.modes_hz = _two_modes(scene, base)
         self.decay = self.zeta * 2 * math.pi * self.modes_hz[0]
         # the half period met along the move, on the nominal beam and at each corner
-        self.halves = [sum(0.25 / first_mode(s, w)[0] for w in self.ends) for s in scenes]
+        self.halves = [sum(0.25 / f for f in ends) for ends in firsts]
         self.f2 = tuple(_two_modes(scene, w)[1] for w in self.ends)
         self.second_s = 0.25 / self.f2[0] + 0.25 / self.f2[1]
         self.inner_scenes = [self._inner_scene(s) for s in scenes]

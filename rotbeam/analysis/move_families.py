@@ -25,8 +25,6 @@ from .shapers import Shaper, shape, train
 KAPPA_BISECT = 24
 #: the first pulse's share of the speed change, within (SHARE_MIN, 1 - SHARE_MIN)
 SHARE_MIN = 0.02
-#: families, by their kind, and their unknowns' count
-UNKNOWNS = {"zv": 2, "zvd": 2, "zv2": 4, "pulses": 2}
 
 
 @dataclass(frozen=True)
@@ -53,11 +51,6 @@ class Family:
     second_s: float = 0.0
     second_ratio: float = 1.0
     spread: float = 0.0
-
-    @property
-    def unknowns(self) -> int:
-        """How many unknowns the search moves."""
-        return UNKNOWNS[self.kind] + (2 if self.second_s > 0 else 0)
 
     @property
     def name(self) -> str:

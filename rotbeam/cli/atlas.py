@@ -208,7 +208,8 @@ def _print(result, summary: dict) -> None:
               f"run")  # fmt: skip
     show.line("delta_rms", f"{summary['delta_rms_min']:.3g} to {summary['delta_rms_max']:.3g}")
     show.line("floquet_max", f"{summary['floquet_max']:.6f}")
+    n = summary["workers"]
     show.line("seconds", f"{summary['seconds']:.3g} ({summary['points_per_second']:.3g} points "
-              f"a second, {summary['workers']} processes)")  # fmt: skip
+              f"a second, {n} process{'es' if n != 1 else ''})")  # fmt: skip
     if summary["message"]:
         show.line("budget", summary["message"])
