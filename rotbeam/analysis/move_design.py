@@ -46,9 +46,9 @@ INNER_MODES = 2
 #: the baselines' full-model runs (the residual decays: its largest value comes in the first)
 INNER_SETTLE_PERIODS = 1.5
 CHECK_SETTLE_PERIODS = 2.0
-#: the inner model's stepper tolerance (at most; the scene's if looser): its residual moves by
-#: 1e-5 L from numerics.rtol = 1e-5 at half the cost (docs/design.md)
-INNER_RTOL = 1e-4
+#: the inner model's stepper tolerance (at most; the scene's if looser): its residual within
+#: 3e-6 L of rtol = 1e-7's (docs/design.md)
+INNER_RTOL = 1e-5
 #: without a jerk limit the design's acceleration ramps over this share of the shortest
 #: first-mode period (a step rings every mode of the beam and costs the stepper 20x more); the
 #: longer ramps last one period of the second mode, whose spectrum vanishes there
@@ -581,28 +581,41 @@ class _Search:
         equations, four unknowns: zero there and, between, to first order).  A second-mode
         train cancels the second mode's amplitude at the first of them."""
         if fam.kind != "zv2":
-            return [0]
+            return [fam.at]
         corner = self.halves[1:]
         return [1 + int(np.argmax(corner)), 1 + int(np.argmin(corner))]
 
     def start(self, fam: Family, linear: bool = False) -> tuple[float, ...]:
         """The unknowns the search starts from: the half period met along the move, times the
-        shift of the last train's root from it, and the model's zeta's K (zv2: the ZVD
-        root's, or with `linear` the linear start without a run, its spacing split into
-        s (1 +- spread), zeros at the box's longest and shortest half periods);
-        for two pulses, the coast and share that leave a linear oscillator of the middle
-        frequency still (docs/design.md)."""
-        half, logk = self.shift * self.halves[0], math.log(decay_ratio(self.zeta))
+        shift of the last train's root from it, and the model's zeta's K (of the beam the
+        family cancels, `Family.at`); with a second-mode train, the root of the family without
+        it where that was searched.  zv2: the roots of one ZV train alone at each of its two
+        target corners (for a linear oscillator the convolved trains cancel each corner's
+        amplitude where each train alone does), or with `linear` the linear start without a
+        run, the ZVD start's spacing split into s (1 +- spread).  For two pulses, the coast
+        and share that leave a linear oscillator of the middle frequency still
+        (docs/design.md)."""
+        half, logk = self.shift * self.halves[fam.at], math.log(decay_ratio(self.zeta))
         second = (fam.second_s, math.log(fam.second_ratio)) if fam.second_s > 0 else ()
-        if fam.kind == "zv2":  # the ZVD root (zv2 at equal spacings), split
-            zvd = replace(fam, kind="zvd", spread=0.0)
-            root = self.start(zvd) if linear else self._root(zvd)[0].params
+        base = replace(fam, second_s=0.0, second_ratio=1.0)
+        if second and not linear and base in self.floors:  # the family without the train's root
+            return (*self._least(base).params, *second)
+        if fam.kind == "zv2" and linear:  # the linear ZVD start (zv2 at equal spacings), split
+            root = self.start(replace(fam, kind="zvd", spread=0.0), True)
             s1, s2 = root[0] * (1 + fam.spread), root[0] * (1 - fam.spread)
             return (s1, root[1], s2, root[1], *root[2:])
+        if fam.kind == "zv2":  # one ZV train's root at each target corner, alone
+            one = replace(fam, kind="zv", spread=0.0, second_s=0.0, second_ratio=1.0)
+            roots = [self._root(replace(one, at=k))[0].params for k in self.targets(fam)]
+            return (*roots[0], *roots[1], *second)
         if fam.kind != "pulses":
             return (half, logk, *second)
         T = abs(self.speeds[1] - self.speeds[0]) / self.limits.max_accel
         return (*pulses_start(T, 2.0 * half, fam.ramp), *second)
+
+    def _least(self, fam: Family) -> Evaluation:
+        """The family's evaluation of least inner residual so far."""
+        return min((e for e in self.evaluations if e.family == fam), key=lambda e: e.residual)
 
     def _scales(self, fam: Family) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         """The unknowns' finite-difference steps, trust region and bounds."""
@@ -678,7 +691,8 @@ class _Search:
         self.evaluations.append(ev)
         if self.progress is not None:
             shown = ", ".join(f"{p:.4g}" for p in params)
-            self.progress(f"{fam.name} ({shown}), ramp {fam.ramp * 1e3:.3g} ms: T "
+            where = f" at {self.boxed[fam.at - 1][0]}" if fam.at else ""
+            self.progress(f"{fam.name}{where} ({shown}), ramp {fam.ramp * 1e3:.3g} ms: T "
                           f"{motion.duration:.4g} s, residual {ev.residual:.3g}")  # fmt: skip
         return ev
 
@@ -728,7 +742,7 @@ class _Search:
                     if out.found and motion.duration >= out.duration_s:
                         continue
                     check = self.full(motion)
-                    corner = self._corners(motion) if check.residual <= self.tol else {}
+                    corner = self._corners(ev) if check.residual <= self.tol else {}
                     worst = max([check.residual, *corner.values()])
                     meets = worst <= self.tol and len(corner) == len(self.boxed)
                     if meets or (not out.found and (best is None or worst < best)):
@@ -775,10 +789,18 @@ class _Search:
         out.kind, out.ramp_s, out.spacing_s, out.kappa = ev.kind, ev.ramp_s, ev.spacing_s, ev.kappa
         out.ratio, out.params = ev.ratio, ev.params
 
-    def _corners(self, motion: Motion) -> dict[str, float]:
-        """The full model's residual at the box's corners, in turn until one misses."""
+    def _corners(self, ev: Evaluation) -> dict[str, float]:
+        """The full model's residual at the box's corners, in turn until one misses: the
+        corners of larger inner residual first (those not run on the inner model last)."""
+        motion = self.motion_of(ev)
+
+        def inner(k: int) -> float:
+            run = self.runs.get((k + 1, ev.family, ev.params))
+            return -math.inf if run is None else run[0]
+
+        order = sorted(range(len(self.boxed)), key=inner, reverse=True)
         corner: dict[str, float] = {}
-        for label, sc in self.boxed:
+        for label, sc in (self.boxed[k] for k in order):
             corner[label] = self.full(motion, sc).residual
             if corner[label] > self.tol:
                 break
@@ -817,8 +839,7 @@ class _Search:
                 return []
         _, lo, _ = self._root(fam)
         target = INNER_MARGIN * self.tol
-        mine = [e for e in self.evaluations if e.family == fam]
-        least = min(mine, key=lambda e: e.residual)
+        least = self._least(fam)
         if fam.kind in ("zv", "zvd") and least.residual <= target:
             self.shift = least.params[0] / self.halves[0]
         second = abs(self._inner_run(0, fam, least.params)[1][1])
@@ -891,8 +912,7 @@ class _Search:
             x, ev, fresh = new, nxt, False
             if stalls >= 2:  # least squares (more equations than unknowns) at its floor
                 break
-        mine = [e for e in self.evaluations if e.family == fam]
-        return min(mine, key=lambda e: e.residual), lo, hi
+        return self._least(fam), lo, hi
 
     def _shorten(self, fam: Family, least: Evaluation, target: float,
                  lowest: np.ndarray) -> Evaluation:  # fmt: skip

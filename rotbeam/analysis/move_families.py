@@ -43,7 +43,11 @@ class Family:
     second_ratio : float
         Where that train's amplitude ratio starts.
     spread : float
-        zv2: the two trains' spacings start at s (1 + spread) and s (1 - spread).
+        zv2: the two trains' spacings start at s (1 + spread) and s (1 - spread) where no
+        search has run yet (the families' order).
+    at : int
+        The beam whose first-mode amplitude a zv, zvd or pulses family cancels: 0 the nominal
+        one, k the k-th corner of a box (zv2 cancels it at the box's two extreme corners).
     """
 
     kind: str
@@ -51,6 +55,7 @@ class Family:
     second_s: float = 0.0
     second_ratio: float = 1.0
     spread: float = 0.0
+    at: int = 0
 
     @property
     def name(self) -> str:
