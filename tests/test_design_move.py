@@ -4,8 +4,9 @@ samples by finite differences, the rigid-body limit of a stiff beam (closed-form
 duration), the linear limit (ZVD's residual vanishes; the design is no longer than ZV's), a
 spin-up, a payload, the time budget's cut and bad input in one line.
 
-Cheap settings: a grid of N = 8, numerics.rtol = 1e-4 (the residual moves by 1e-5 L), a jerk
-limit (steps in the acceleration ring every mode and cost the stepper 20x more)."""
+Cheap settings: a grid of N = 8, numerics.rtol = 1e-4 (the residual within 2e-5 L of
+rtol = 1e-8's), a jerk limit (steps in the acceleration ring every mode and cost the stepper
+20x more)."""
 
 from __future__ import annotations
 
@@ -221,3 +222,119 @@ def test_a_robust_design_holds_at_every_corner_and_costs_duration(slew):
         assert again == pytest.approx(robust.corner_residuals[label], rel=1e-6)
         assert again <= 0.005
     assert robust.duration_s >= slew[0].duration_s
+
+
+def _search(robust=None):
+    """A search of the cheap slew (nothing run yet), with the box's corners if given."""
+    from rotbeam.analysis.motion import Limits
+    from rotbeam.analysis.move_box import corners, parse_box
+    from rotbeam.analysis.move_design import _request, _Search
+    from rotbeam.solve.timebudget import TimeBudget
+
+    scene = _scene()
+    limits = Limits(LIMITS["max_speed"], LIMITS["max_accel"], LIMITS["max_jerk"])
+    request = _request(0.3, None, None, limits, 0.005, "y_m")
+    boxed = corners(scene, parse_box(robust))
+    return _Search(scene, limits, request, boxed, None, TimeBudget(60.0))
+
+
+def test_the_corners_are_checked_worst_first_until_one_misses(monkeypatch):
+    """The full model runs the corner of largest inner residual first, then the next, and stops
+    at the first that misses: a design that fails at a corner costs one corner run, not four."""
+    from types import SimpleNamespace
+
+    from rotbeam.analysis.move_design import Evaluation
+
+    search = _search("E=+-5%,gamma=+-25%")
+    fam = search.families[0]
+    params = search.start(fam, True)
+    ev = Evaluation(fam, params, 1.0, 0.2, 0.001, (), 0.0)
+    inner = [0.002, 0.004, 0.001, 0.003]  # corners 0..3 on the inner model
+    for k, r in enumerate(inner):
+        search.runs[(k + 1, fam, params)] = (r, (0j, 0j))
+    full = {0: 0.004, 1: 0.0045, 2: 0.001, 3: 0.006}  # corner 3 misses on the full model
+    ran = []
+
+    def fake_full(motion, scene=None):
+        k = [s for _, s in search.boxed].index(scene)
+        ran.append(k)
+        return SimpleNamespace(residual=full[k])
+
+    monkeypatch.setattr(search, "full", fake_full)
+    got = search._corners(ev)
+    assert ran == [1, 3]  # inner 0.004 first, then 0.003, which misses: no more runs
+    assert list(got.values()) == [0.0045, 0.006]
+    full[3] = 0.002  # all hold: every corner, worst inner first
+    ran.clear()
+    got = search._corners(ev)
+    assert ran == [1, 3, 0, 2] and len(got) == 4
+
+
+def test_a_second_mode_train_starts_from_the_root_without_it():
+    """A +m2 family starts at the unknowns of the least residual found for the same family
+    without the train (once that was searched), and its train at half the second period."""
+    from rotbeam.analysis.move_design import Evaluation
+
+    search = _search()
+    base = next(f for f in search.families if f.second_s == 0 and f.kind == "zv")
+    m2 = next(f for f in search.families if f.second_s > 0 and f.kind == "zv"
+              and f.ramp == base.ramp)  # fmt: skip
+    linear = search.start(m2)
+    root = (0.9 * linear[0], 0.1)
+    for params, residual in ((linear[:2], 0.01), (root, 0.002), ((linear[0], 0.3), 0.004)):
+        search.evaluations.append(Evaluation(base, params, 1.0, 0.2, residual, (), 0.0))
+    search.floors[base] = 0.001
+    assert search.start(m2) == (*root, m2.second_s, math.log(m2.second_ratio))
+    assert search.start(m2, True) == linear  # the families' order does not run the search
+
+
+@pytest.mark.parametrize("beam", [
+    pytest.param({}, id="bare"),
+    pytest.param({"tip_mass": 4.68e-4, "tip_inertia": 1e-8}, id="payload", marks=pytest.mark.slow),
+])  # fmt: skip
+def test_the_stepper_error_is_a_small_share_of_what_a_design_resolves(beam):
+    """The move stepper's residual and peak at rtol = 1e-5 and 1e-4 (its absolute tolerance
+    set by rtol, `rotbeam.runs.move.ATOL_SHARE`) against a run at rtol = 1e-7: within 1/30 of
+    the least residual a design resolves (RESOLVE x rtol x peak)."""
+    from rotbeam.analysis.motion import Limits, rigid_slew
+    from rotbeam.analysis.move_check import check_move
+    from rotbeam.analysis.move_design import RESOLVE, first_mode
+    from rotbeam.analysis.shapers import for_mode, shape
+
+    def run(rtol):
+        scene = build_scene({"beam": beam, "numerics": {"N": 8, "rtol": rtol}})
+        return check_move(scene, move, 8.0, "y_m", 2 / f)
+
+    f, zeta = first_mode(build_scene({"beam": beam, "numerics": {"N": 8}}), 0.0)
+    limits = Limits(LIMITS["max_speed"], LIMITS["max_accel"], LIMITS["max_jerk"])
+    move = shape(rigid_slew(0.3, limits), for_mode("zv", f, zeta))
+    ref = run(1e-7)
+    for rtol in (1e-5, 1e-4):
+        got = run(rtol)
+        floor = RESOLVE * rtol * got.peak
+        assert abs(got.residual - ref.residual) < floor / 30
+        assert abs(got.peak - ref.peak) < floor / 30
+
+
+def test_two_trains_start_from_one_train_rooted_at_each_target_corner(monkeypatch):
+    """zv2 starts from the root of one ZV train alone (no second-mode train) at each of its two
+    target corners, in the targets' order: the unknowns (s_1, log K_1, s_2, log K_2)."""
+    from types import SimpleNamespace
+
+    search = _search("E=+-5%,gamma=+-25%")
+    zv2 = next(f for f in search.families if f.kind == "zv2" and f.second_s == 0)
+    asked = []
+
+    def fake_root(fam):
+        asked.append(fam)
+        return SimpleNamespace(params=(0.07 + fam.at / 1000, -0.1 * fam.at)), None, None
+
+    monkeypatch.setattr(search, "_root", fake_root)
+    a, b = search.targets(zv2)
+    assert a != b
+    assert search.start(zv2) == (0.07 + a / 1000, -0.1 * a, 0.07 + b / 1000, -0.1 * b)
+    assert [(f.kind, f.at, f.second_s, f.ramp) for f in asked] == [
+        ("zv", a, 0.0, zv2.ramp), ("zv", b, 0.0, zv2.ramp)]  # fmt: skip
+    # the targets: the corners of the longest and of the shortest half period met
+    halves = search.halves[1:]
+    assert (a, b) == (1 + halves.index(max(halves)), 1 + halves.index(min(halves)))
