@@ -318,8 +318,11 @@ def test_the_stepper_error_is_a_small_share_of_what_a_design_resolves(beam):
 
 def test_two_trains_start_from_one_train_rooted_at_each_target_corner(monkeypatch):
     """zv2 starts from the root of one ZV train alone (no second-mode train) at each of its two
-    target corners, in the targets' order: the unknowns (s_1, log K_1, s_2, log K_2)."""
+    target corners, in the targets' order, their log K split apart (off K_1 = K_2, where the
+    trains' amplitudes are singular in them): the unknowns (s_1, log K_1, s_2, log K_2)."""
     from types import SimpleNamespace
+
+    from rotbeam.analysis.move_design import SPLIT_LOG_RATIO
 
     search = _search("E=+-5%,gamma=+-25%")
     zv2 = next(f for f in search.families if f.kind == "zv2" and f.second_s == 0)
@@ -332,9 +335,41 @@ def test_two_trains_start_from_one_train_rooted_at_each_target_corner(monkeypatc
     monkeypatch.setattr(search, "_root", fake_root)
     a, b = search.targets(zv2)
     assert a != b
-    assert search.start(zv2) == (0.07 + a / 1000, -0.1 * a, 0.07 + b / 1000, -0.1 * b)
+    split = SPLIT_LOG_RATIO
+    assert search.start(zv2) == pytest.approx(
+        (0.07 + a / 1000, -0.1 * a + split, 0.07 + b / 1000, -0.1 * b - split), abs=1e-15
+    )
     assert [(f.kind, f.at, f.second_s, f.ramp) for f in asked] == [
         ("zv", a, 0.0, zv2.ramp), ("zv", b, 0.0, zv2.ramp)]  # fmt: skip
     # the targets: the corners of the longest and of the shortest half period met
     halves = search.halves[1:]
     assert (a, b) == (1 + halves.index(max(halves)), 1 + halves.index(min(halves)))
+
+
+@pytest.mark.parametrize("rigid, skipped", [(1.0, True), (0.01, False)])
+def test_one_train_is_not_searched_where_it_misses_the_box_in_linear_theory(
+    monkeypatch, rigid, skipped
+):
+    """With a box, zv (and zv+m2) is skipped where pi eps / 2 of the rigid move's inner
+    residual exceeds the tolerance, eps the box's half spread of half periods; zv2 is not."""
+    from types import SimpleNamespace
+
+    search = _search("E=+-5%,gamma=+-25%")
+    eps = (max(search.halves) - min(search.halves)) / (2 * search.halves[0])
+    assert 0.01 < eps < 0.05  # E +-5 %: about +-2.5 % in the first frequency
+    assert (0.5 * math.pi * eps * rigid > 0.005) == skipped
+    monkeypatch.setattr(search, "_run", lambda scene, motion: SimpleNamespace(residual=rigid))
+    searched = []
+
+    def fake_root(fam):
+        searched.append(fam)
+        raise StopIteration  # searched: no need to go on
+
+    monkeypatch.setattr(search, "_root", fake_root)
+    for fam in search.families:
+        try:
+            assert search._search(fam) == []
+        except StopIteration:
+            pass
+    kinds = {f.name for f in searched}
+    assert ("zv" in kinds or "zv+m2" in kinds) != skipped and "zv2" in kinds

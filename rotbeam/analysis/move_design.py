@@ -59,6 +59,10 @@ INNER_MARGIN = 0.5
 #: train's amplitude ratio K within exp(+-LOG_RATIO_MAX)
 BRACKET = 0.2
 LOG_RATIO_MAX = 1.5
+#: zv2 starts with its trains' log K split by +-this: (K_1, K_2) -> (K_1 + K_2, K_1 K_2), the
+#: train's amplitudes, is singular at K_1 = K_2, where the roots of single trains lie, and the
+#: secant steps stall there (docs/design.md)
+SPLIT_LOG_RATIO = 0.3
 #: finite-difference steps of the first Jacobian: a share of the spacing, and of log K
 STEP_SPACING = 0.02
 STEP_RATIO = 0.03
@@ -525,6 +529,9 @@ class _Search:
         self.decay = self.zeta * 2 * math.pi * self.modes_hz[0]
         # the half period met along the move, on the nominal beam and at each corner
         self.halves = [sum(0.25 / f for f in ends) for ends in firsts]
+        #: the box's half spread of half periods, relative to the nominal beam's
+        self.spread = (max(self.halves) - min(self.halves)) / (2 * self.halves[0])
+        self._one_train: float | None = None
         self.f2 = tuple(_two_modes(scene, w)[1] for w in self.ends)
         self.second_s = 0.25 / self.f2[0] + 0.25 / self.f2[1]
         self.inner_scenes = [self._inner_scene(s) for s in scenes]
@@ -550,7 +557,7 @@ class _Search:
         ramps = sorted({short, max(short, 1.0 / self.modes_hz[1])})
         kinds = ["zv", "zv2" if self.boxed else "zvd"] + (["pulses"] if self.speeds else [])
         # zv2's zeros start at the box's ends
-        spread = (max(self.halves) - min(self.halves)) / (2 * self.halves[0])
+        spread = self.spread
         second = {"second_s": self.second_s, "second_ratio": math.exp(-self.decay * self.second_s)}
         fams = [Family(kind, ramp, spread=spread if kind == "zv2" else 0.0, **extra)
                 for kind in kinds for ramp in ramps for extra in ({}, second)]  # fmt: skip
@@ -591,10 +598,10 @@ class _Search:
         family cancels, `Family.at`); with a second-mode train, the root of the family without
         it where that was searched.  zv2: the roots of one ZV train alone at each of its two
         target corners (for a linear oscillator the convolved trains cancel each corner's
-        amplitude where each train alone does), or with `linear` the linear start without a
-        run, the ZVD start's spacing split into s (1 +- spread).  For two pulses, the coast
-        and share that leave a linear oscillator of the middle frequency still
-        (docs/design.md)."""
+        amplitude where each train alone does), their log K split by +-SPLIT_LOG_RATIO, or
+        with `linear` the linear start without a run, the ZVD start's spacing split into
+        s (1 +- spread).  For two pulses, the coast and share that leave a linear oscillator
+        of the middle frequency still (docs/design.md)."""
         half, logk = self.shift * self.halves[fam.at], math.log(decay_ratio(self.zeta))
         second = (fam.second_s, math.log(fam.second_ratio)) if fam.second_s > 0 else ()
         base = replace(fam, second_s=0.0, second_ratio=1.0)
@@ -606,8 +613,9 @@ class _Search:
             return (s1, root[1], s2, root[1], *root[2:])
         if fam.kind == "zv2":  # one ZV train's root at each target corner, alone
             one = replace(fam, kind="zv", spread=0.0, second_s=0.0, second_ratio=1.0)
-            roots = [self._root(replace(one, at=k))[0].params for k in self.targets(fam)]
-            return (*roots[0], *roots[1], *second)
+            (s1, k1), (s2, k2) = (self._root(replace(one, at=k))[0].params
+                                  for k in self.targets(fam))  # fmt: skip
+            return (s1, k1 + SPLIT_LOG_RATIO, s2, k2 - SPLIT_LOG_RATIO, *second)
         if fam.kind != "pulses":
             return (half, logk, *second)
         T = abs(self.speeds[1] - self.speeds[0]) / self.limits.max_accel
@@ -832,7 +840,10 @@ class _Search:
         tolerance, at every corner of a box) the shortest first unknown (a spacing or the coast)
         at that level, down to SHORTEN of a half period shorter.  A family with a second-mode
         train is not searched where the same family without it misses by more than what its
-        second mode leaves (the train cannot help there)."""
+        second mode leaves (the train cannot help there).  With a box, one ZV train is not
+        searched where it misses the box even in linear theory (`one_train_misses`)."""
+        if fam.kind == "zv" and self.boxed and self.one_train_misses():
+            return []
         if fam.second_s > 0:
             base = replace(fam, second_s=0.0, second_ratio=1.0)
             if base in self.floors and self.floors[base] > INNER_SLACK * self.tol:
@@ -850,6 +861,19 @@ class _Search:
             return [least]
         short = self._shorten(fam, least, target, lo)
         return [short, least] if short is not least else [least]
+
+    def one_train_misses(self) -> bool:
+        """Whether one ZV train tuned to the nominal beam misses the box in linear theory: at a
+        relative error eps of the half period it leaves a share pi eps / 2 of the unshaped
+        move's residual (eps the box's half spread, the unshaped residual the rigid move's on
+        the inner model; the beam leaves three times that, docs/design.md)."""
+        if self._one_train is None:
+            rigid = self._run(self.inner_scenes[0], self.rigid(self.limits)).residual
+            self._one_train = 0.5 * math.pi * self.spread * rigid
+            if self.progress is not None and self._one_train > self.tol:
+                self.progress(f"zv: not searched, one train misses the box even in linear "
+                              f"theory ({self._one_train:.3g} > {self.tol:g})")  # fmt: skip
+        return self._one_train > self.tol
 
     def _root(self, fam: Family) -> tuple[Evaluation, np.ndarray, np.ndarray]:
         """The family's least-residual candidate, and its unknowns' bounds.
