@@ -1,16 +1,14 @@
 """What the move stepper's absolute tolerance costs and what it changes: five moves of the
-reference beam at `rotbeam.runs.move.ATOL_SHARE` and at shares 1000 and 10 times smaller,
+reference beam at `rotbeam.runs.move.ATOL_SHARE` and at shares 10 and 1000 times smaller,
 against a reference at rtol = 1e-7.
 
     python3 -m rotbeam.bench.move_tolerance [--N 40] [--shares 1,0.1,0.001] [--out table.csv]
 
-The moves are designs of `rotbeam design-move` on the reference beam (docs/design.md): a slew
-through 1 rad at 10 rad/s and 100 rad/s^2 shaped by one ZV train with ramps of 6.8 ms and of
-24.4 ms, a slew that misses the tolerance (a spacing 17 % short), a spin-up from 0 to 20 rad/s
-by two pulses and a second-mode train, and the slew with half the beam's mass at its tip.  The
-shares run alternating, one move at a time; the table gives each run's wall time and its
-residual's and peak's distance from the reference.  The choice and the numbers: docs/model.md,
-"Drives".
+The moves (`MOVES`) are designs of `rotbeam design-move` on the reference beam: slews shaped by
+one ZV train (ramps of 6.8 and 24.4 ms; a spacing 17 % short), a spin-up by two pulses and a
+second-mode train, and the slew with half the beam's mass at its tip.  The table gives each
+run's wall time and its residual's and peak's distance from the reference.  The choice and the
+numbers: docs/model.md, "Drives".
 """
 
 from __future__ import annotations
