@@ -37,7 +37,7 @@ from .move_check import (
     write_move_csv,
 )
 from .move_families import SHARE_MIN, Family, family_motion, pulses_start
-from .shapers import KINDS, decay_ratio, for_mode, shape
+from .shapers import KINDS, decay_ratio, for_mode, residual_factor, shape
 
 #: modes of the inner model (the modal reduced model; 2 modes: within 1e-4 L of the full
 #: model's residual on the reference beam, docs/design.md)
@@ -529,8 +529,6 @@ class _Search:
         self.decay = self.zeta * 2 * math.pi * self.modes_hz[0]
         # the half period met along the move, on the nominal beam and at each corner
         self.halves = [sum(0.25 / f for f in ends) for ends in firsts]
-        #: the box's half spread of half periods, relative to the nominal beam's
-        self.spread = (max(self.halves) - min(self.halves)) / (2 * self.halves[0])
         self._one_train: float | None = None
         self.f2 = tuple(_two_modes(scene, w)[1] for w in self.ends)
         self.second_s = 0.25 / self.f2[0] + 0.25 / self.f2[1]
@@ -557,7 +555,7 @@ class _Search:
         ramps = sorted({short, max(short, 1.0 / self.modes_hz[1])})
         kinds = ["zv", "zv2" if self.boxed else "zvd"] + (["pulses"] if self.speeds else [])
         # zv2's zeros start at the box's ends
-        spread = self.spread
+        spread = (max(self.halves) - min(self.halves)) / (2 * self.halves[0])
         second = {"second_s": self.second_s, "second_ratio": math.exp(-self.decay * self.second_s)}
         fams = [Family(kind, ramp, spread=spread if kind == "zv2" else 0.0, **extra)
                 for kind in kinds for ramp in ramps for extra in ({}, second)]  # fmt: skip
@@ -629,9 +627,8 @@ class _Search:
         """The unknowns' finite-difference steps, trust region and bounds."""
         half, s2 = self.halves[0], self.second_s
         lo_s, hi_s = (1 - BRACKET) * 0.5 / self.f_hi, (1 + BRACKET) * 0.5 / self.f_lo
-        pairs = [(half, lo_s, hi_s)] * (2 if fam.kind == "zv2" else 1)
-        if fam.kind == "pulses":
-            pairs = []
+        trains = {"pulses": 0, "zv2": 2}.get(fam.kind, 1)  # first-mode trains (s, log K)
+        pairs = [(half, lo_s, hi_s)] * trains
         if fam.second_s > 0:
             lo2, hi2 = (1 - BRACKET) * 0.5 / max(self.f2), (1 + BRACKET) * 0.5 / min(self.f2)
             pairs.append((s2, lo2, hi2))
@@ -802,11 +799,11 @@ class _Search:
         corners of larger inner residual first (those not run on the inner model last)."""
         motion = self.motion_of(ev)
 
-        def inner(k: int) -> float:
+        def inner_residual(k: int) -> float:
             run = self.runs.get((k + 1, ev.family, ev.params))
             return -math.inf if run is None else run[0]
 
-        order = sorted(range(len(self.boxed)), key=inner, reverse=True)
+        order = sorted(range(len(self.boxed)), key=inner_residual, reverse=True)
         corner: dict[str, float] = {}
         for label, sc in (self.boxed[k] for k in order):
             corner[label] = self.full(motion, sc).residual
@@ -854,22 +851,25 @@ class _Search:
         if fam.kind in ("zv", "zvd") and least.residual <= target:
             self.shift = least.params[0] / self.halves[0]
         second = abs(self._inner_run(0, fam, least.params)[1][1])
-        self.floors[fam] = self.worst(least) - second
-        if self.worst(least) > INNER_SLACK * self.tol:
+        worst = self.worst(least)
+        self.floors[fam] = worst - second
+        if worst > INNER_SLACK * self.tol:
             return []
-        if self.worst(least) > target:
+        if worst > target:
             return [least]
         short = self._shorten(fam, least, target, lo)
         return [short, least] if short is not least else [least]
 
     def one_train_misses(self) -> bool:
-        """Whether one ZV train tuned to the nominal beam misses the box in linear theory: at a
-        relative error eps of the half period it leaves a share pi eps / 2 of the unshaped
-        move's residual (eps the box's half spread, the unshaped residual the rigid move's on
-        the inner model; the beam leaves three times that, docs/design.md)."""
+        """Whether one ZV train tuned to the nominal beam misses the box in linear theory: at
+        each corner it leaves `residual_factor` of the unshaped move's residual (about
+        pi eps / 2 at a relative error eps of the half period; the unshaped residual the rigid
+        move's on the inner model; the beam leaves three times that, docs/design.md)."""
         if self._one_train is None:
             rigid = self._run(self.inner_scenes[0], self.rigid(self.limits)).residual
-            self._one_train = 0.5 * math.pi * self.spread * rigid
+            zv = for_mode("zv", 0.5 / self.halves[0], self.zeta)
+            share = max(residual_factor(zv, 0.5 / h, self.zeta) for h in self.halves)
+            self._one_train = share * rigid
             if self.progress is not None and self._one_train > self.tol:
                 self.progress(f"zv: not searched, one train misses the box even in linear "
                               f"theory ({self._one_train:.3g} > {self.tol:g})")  # fmt: skip

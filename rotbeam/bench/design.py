@@ -8,8 +8,7 @@ slew with half the beam's mass at its tip, each also robust over E +-5 % and gam
 One row per case and move (designed, rigid, ZV, ZVD; a robust case's design alone): duration,
 residual and peak on the full model, whether it meets the tolerance and how much shorter the
 design is; per case the search's seconds and, for a robust case, its price in duration over
-its nominal design.  The goals
-and the method: docs/design.md.
+its nominal design.  The goals and the method: docs/design.md.
 """
 
 from __future__ import annotations

@@ -24,7 +24,7 @@ from ..analysis.move_check import check_move
 from ..analysis.move_families import Family, family_motion
 from ..runs import move as move_module
 from ..runs.scene import build_scene
-from .design import PAYLOAD
+from .design import CASES, PAYLOAD
 
 #: the reference's relative tolerance (its absolute one at the default share)
 REFERENCE_RTOL = 1e-7
@@ -43,13 +43,15 @@ MOVES: dict[str, tuple[dict, Family, tuple[float, ...], float]] = {
 
 
 def _motion(family: Family, params: tuple[float, ...]) -> Motion:
-    """The move of one family at its unknowns under the worked designs' limits."""
+    """The move of one family at its unknowns under its worked design's request (`CASES`:
+    the spin-up's for two pulses, else the slew's)."""
+    r = CASES["spinup" if family.kind == "pulses" else "slew"][1]
+    limits = Limits(r["max_speed"], r["max_accel"], None)
     if family.kind == "pulses":
-        limits = Limits(20.0, 100.0, None)
-        rigid: Callable[[Limits], Motion] = lambda lim: rigid_speed_change(0.0, 20.0, lim)  # noqa: E731
-        return family_motion(family, params, rigid, limits, (0.0, 20.0))[0]
-    limits = Limits(10.0, 100.0, None)
-    return family_motion(family, params, lambda lim: rigid_slew(1.0, lim), limits, None)[0]
+        speeds = (r["omega_start"], r["omega_end"])
+        rigid: Callable[[Limits], Motion] = lambda lim: rigid_speed_change(*speeds, lim)  # noqa: E731
+        return family_motion(family, params, rigid, limits, speeds)[0]
+    return family_motion(family, params, lambda lim: rigid_slew(r["angle"], lim), limits, None)[0]
 
 
 def _run(beam: dict, motion: Motion, f_hz: float, rtol: float, share: float, N: int):
