@@ -249,3 +249,59 @@ def test_the_dop853_table_meets_the_order_conditions():
     c = np.append(t.C, 1.0)  # E5 weighs the 12 stages and f at the new point
     for q in range(1, 6):
         assert abs(t.E5 @ c ** (q - 1)) < 1e-13
+
+
+def _move_dl(effects: Effects, **kw) -> Dimensionless:
+    """A scene whose drive is a move: lam through a smooth rise and fall over tau in [0, 3]."""
+    from rotbeam.model.drive import MoveLaw
+
+    tau = np.linspace(0.0, 3.0, 31)
+    law = MoveLaw(tuple(tau), tuple(0.8 * np.sin(np.pi * tau / 3.0) ** 2))
+    slender = 0.05 if effects.extension else None
+    return Dimensionless(2.875, 0.14, law.mean, 0.8, law.omega, effects, slender, law, **kw)
+
+
+PAYLOAD = {"tip_mass": 0.4, "tip_inertia": 0.01}
+
+
+@pytest.mark.parametrize("modes", [0, 3], ids=["full", "3 modes"])
+@pytest.mark.parametrize("payload", [False, True], ids=["bare", "payload"])
+@pytest.mark.parametrize("move", [False, True], ids=["harmonics", "move"])
+@pytest.mark.parametrize("effects", [Effects(), Effects.from_list("none"),
+                                     Effects(coriolis=True, extension=True)],
+                         ids=["default", "none", "coriolis+extension"])  # fmt: skip
+def test_the_kernel_without_a_tangent_is_the_numpy_model(effects, move, payload, modes):
+    """Without a tangent the kernel also covers a payload, a move's spline and the modal model
+    (the residual projected on its modes): its right-hand side equals the numpy model's
+    `acceleration` to round-off, at instants before, inside and after a move."""
+    from rotbeam.model import elastica_kernel
+    from rotbeam.model.modal import ModalModel
+
+    kw = PAYLOAD if payload else {}
+    dl = _move_dl(effects, **kw) if move else scene_dl(effects, **kw)
+    m = DiscreteElastica(dl, 9)
+    m = ModalModel(m, modes) if modes else m
+    kernel, why = m.kernel(tangent=False)
+    assert why == "" and kernel is not None
+    n = m.n
+    for seed, t in enumerate((-0.5, 0.37, 1.6, 2.95, 3.5)):
+        th, tt, _, _ = random_point(n, seed)
+        out = np.empty(2 * n)
+        elastica_kernel.rates(t, np.concatenate([th, tt]), out, False, *kernel.arguments)
+        acc = m.acceleration(th, tt, dl.lam(t), dl.lam_dot(t))
+        np.testing.assert_array_equal(out[:n], tt)
+        np.testing.assert_allclose(out[n:], acc, rtol=0, atol=1e-12 * np.abs(acc).max())
+
+
+def test_a_tangent_is_refused_where_the_kernel_has_none_in_one_line():
+    """The modal model and a payload have no compiled tangent: asked with one, the kernel says
+    why in one line, and a march built without one refuses a tangent."""
+    from rotbeam.model.modal import ModalModel
+
+    modal = ModalModel(DiscreteElastica(scene_dl(Effects()), 8), 2)
+    payload = DiscreteElastica(scene_dl(Effects(), **PAYLOAD), 8)
+    assert "modal model's tangent" in modal.kernel()[1]
+    assert "payload" in payload.kernel()[1] and "\n" not in payload.kernel()[1]
+    march = stepping.CompiledStepper(modal, 1e-6, np.full(4, 1e-9), tangent=False)
+    with pytest.raises(ValueError, match="without a tangent"):
+        march.tangent(0.0, 0.1, np.zeros(8), None)

@@ -204,9 +204,9 @@ _FIRST_CALL = (
     "import time\nt0 = time.perf_counter()\nimport numpy as np\n"
     "from rotbeam.model import elastica_kernel as elastica_rk\nt1 = time.perf_counter()\n"
     "y = np.zeros(4); s = np.empty((1, 4)); c = np.zeros(3, dtype=np.int64)\n"
-    "m = (np.eye(2), np.eye(2), np.ones((3, 2)), np.ones((2, 3)), np.zeros(8),\n"
-    "     np.zeros((1, 3)))\n"
-    "elastica_rk.advance(y, np.array([0.0, 1e-3]), 0.0, 1e-6, np.full(4, 1e-9), False, *m, s, c)\n"
+    "m = (np.eye(2), np.eye(2), np.ones((3, 2)), np.ones((2, 3)), np.zeros(9),\n"
+    "     np.zeros((1, 3)), np.zeros(0), np.zeros((4, 0)), np.zeros((0, 0)), np.zeros((2, 0)))\n"
+    "elastica_rk.advance(y, np.array([0.0, 1e-3]), 0.0, 1e-6, np.full(4, 1e-9), False, m, s, c)\n"
     "print(t1 - t0, time.perf_counter() - t1)\n"
 )
 

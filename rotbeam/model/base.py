@@ -107,10 +107,16 @@ class DiscreteModel(ABC):
         """Whether any motion decays: the linear damping (`linear_damping`) is not zero."""
         return bool(np.any(self.linear_damping(float(self.dl.lam0))))
 
-    def kernel(self) -> tuple[Kernel | None, str]:
+    def kernel(self, tangent: bool = True) -> tuple[Kernel | None, str]:
         """A compiled time stepper of the model's first-order form, if it offers one (an optional
         accelerator, tested equal to the residual; `rotbeam.model.elastica_kernel` is the one
         rotbeam has).
+
+        Parameters
+        ----------
+        tangent : bool
+            Whether the march will carry a tangent (a classification's); without, a kernel may
+            cover more models.
 
         Returns
         -------
@@ -548,7 +554,7 @@ class Kernel:
     Parameters
     ----------
     advance : callable
-        ``advance(y, stops, h, rtol, atol, tangent, *arguments, saved, counts)`` ->
+        ``advance(y, stops, h, rtol, atol, tangent, arguments, saved, counts)`` ->
         ``(status, h)``: DOP853 through the stops in place (the state and, with `tangent`, its
         tangent).
     rates : callable

@@ -527,6 +527,11 @@ class MoveLaw(DriveLaw):
         """The move's length [units of T]."""
         return self.tau[-1] - self.tau[0]
 
+    @property
+    def spline(self) -> Any:
+        """The cubic spline lam(tau) through the samples (scipy's `CubicSpline`, a `PPoly`)."""
+        return self._curve[0]
+
     def dense(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """The move sampled at DENSE equispaced instants of its duration, by the spline at once.
 

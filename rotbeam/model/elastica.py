@@ -241,43 +241,52 @@ class DiscreteElastica(GyroscopicModel):
         """'N = 40': the grid, for messages."""
         return f"N = {self.N}"
 
-    def kernel(self) -> tuple[Kernel | None, str]:
+    def kernel(self, tangent: bool = True) -> tuple[Kernel | None, str]:
         """The compiled DOP853 march of `rotbeam.model.elastica_kernel`: its right-hand side for
         the standard parts (`rotbeam.model.loads.KERNEL_PARTS`, each at most once; extension
-        too: it only changes the grid's operators) under a drive of harmonics.  Another part, a
-        payload (its rotary inertia and its undamped mass), a subclass such as the printed
-        appendix, another drive law, or no numba leave the model to the numpy path.
+        too: it only changes the grid's operators) under a drive of harmonics or a move; without
+        a tangent, also with a payload (its rotary inertia and its undamped mass).  A subclass
+        such as the printed appendix, another drive law, a payload with a tangent or no numba
+        leave the model to the numpy path.
+
+        Parameters
+        ----------
+        tangent : bool
+            Whether the march will carry a tangent.
 
         Returns
         -------
         kernel : Kernel or None
-            The march and (W, K, P, Q, par, harm), or None where it does not cover the model.
+            The march and (W, K, P, Q, par, harm, knots, cubic, Wd, Phi), or None where it
+            does not cover the model.
         why_not : str
             '' with arguments, else the reason.
         """
-        from .drive import HarmonicLaw
-
         if type(self) is not DiscreteElastica:
             return None, f"the kernel is DiscreteElastica's, not {type(self).__name__}'s"
-        if self.grid.W_beam is not None or self.rotary:
-            return None, "a payload (tip mass or inertia) is not in the kernel"
+        payload = self.grid.W_beam is not None or bool(self.rotary)
+        if payload and tangent:
+            return None, "a payload (tip mass or inertia) is not in the kernel's tangent"
         flags, why_not = self._kernel_flags()
         if flags is None:
             return None, why_not
-        law = self.dl.law
-        if not isinstance(law, HarmonicLaw):
-            return None, f"the kernel's drive is a sum of harmonics, not a {type(law).__name__}"
+        drive, why_not = _kernel_drive(self.dl.law)
+        if drive is None:
+            return None, why_not
         try:
             import numba  # noqa: F401
         except ImportError:
             return None, "numba is not installed"
         g = self.grid
-        par = np.array([g.x0, self.hub_ratio, self.eta, law.lam0, *flags], dtype=float)
-        harm = np.array([[k * law.omega, a, ph] for k, a, ph in law.terms], dtype=float)
+        par = np.array([g.x0, self.hub_ratio, self.eta, self.dl.law.mean, *flags, self.rotary],
+                       dtype=float)  # fmt: skip
         mats = (np.ascontiguousarray(m, dtype=float) for m in (g.W, g.K, g.P, g.Q))
+        # the damping's own mass with a payload (`damping_rows`): the beam's W
+        Wd = np.zeros((0, 0)) if not payload else g.W if g.W_beam is None else g.W_beam
+        Wd = np.ascontiguousarray(Wd, dtype=float)
         from . import elastica_kernel  # here: numba loads with the first compiled run only
 
-        arguments = (*mats, par, harm.reshape(-1, 3))
+        arguments = (*mats, par, *drive, Wd, np.zeros((self.n, 0)))
         return Kernel(elastica_kernel.advance, elastica_kernel.rates, arguments), ""
 
     def euler_load_vector(self) -> np.ndarray:
@@ -429,3 +438,18 @@ def _summed(pairs, a: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray
         if pb is not None:
             b = b + pb
     return a, b
+
+
+def _kernel_drive(law) -> tuple[tuple | None, str]:
+    """The kernel's drive arrays (harm, knots, cubic) of a harmonic law or a move's spline, or
+    None and why not."""
+    from .drive import HarmonicLaw, MoveLaw
+
+    if isinstance(law, HarmonicLaw):
+        harm = np.array([[k * law.omega, a, ph] for k, a, ph in law.terms], dtype=float)
+        return (harm.reshape(-1, 3), np.zeros(0), np.zeros((4, 0))), ""
+    if isinstance(law, MoveLaw):
+        curve = law.spline
+        return (np.zeros((0, 3)), np.ascontiguousarray(curve.x, dtype=float),
+                np.ascontiguousarray(curve.c, dtype=float)), ""  # fmt: skip
+    return None, f"the kernel's drive is a sum of harmonics or a move, not a {type(law).__name__}"

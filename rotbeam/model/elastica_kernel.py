@@ -29,12 +29,26 @@ _SAFETY, _MIN_FACTOR, _MAX_FACTOR = 0.9, 0.2, 10.0
 _EXPONENT = -1.0 / 8.0  # -1 / (error estimator order 7 + 1)
 
 #: the kernel's flags and numbers, in `par`
-X0, HUB, ETA, LAM0, CENTRIFUGAL, SOFTENING, EULER, CORIOLIS = range(8)
+X0, HUB, ETA, LAM0, CENTRIFUGAL, SOFTENING, EULER, CORIOLIS, ROTARY = range(9)
 
 
 @njit(cache=True)
-def _drive(t, par, harm):
-    """lam and lam_dot of lam0 + sum alpha_k sin(k omega t + phase_k), as `HarmonicLaw`."""
+def _drive(t, par, harm, knots, cubic):
+    """lam and lam_dot: with knots, the piecewise cubic cubic[:, k] on [knots[k], knots[k+1]]
+    (scipy's `PPoly` form, as `MoveLaw`'s spline), its end values outside; else lam0 + sum
+    alpha_k sin(k omega t + phase_k), as `HarmonicLaw`."""
+    if knots.size:
+        last = knots.size - 2
+        x = min(max(t, knots[0]), knots[last + 1])
+        k = 0
+        while k < last and x >= knots[k + 1]:
+            k += 1
+        d = x - knots[k]
+        lam = ((cubic[0, k] * d + cubic[1, k]) * d + cubic[2, k]) * d + cubic[3, k]
+        lam_dot = 0.0
+        if knots[0] <= t <= knots[last + 1]:
+            lam_dot = (3.0 * cubic[0, k] * d + 2.0 * cubic[1, k]) * d + cubic[2, k]
+        return lam, lam_dot
     lam = par[LAM0]
     lam_dot = 0.0
     for r in range(harm.shape[0]):
@@ -86,11 +100,12 @@ def _lu_solve(A, piv, b):
 
 
 @njit(cache=True)
-def rates(t, y, out, tangent, W, K, P, Q, par, harm):
+def rates(t, y, out, tangent, W, K, P, Q, par, harm, knots, cubic, Wd, Phi):
     """out <- (Theta_t, Theta_tt) of the state y[:2n], and with `tangent` also
-    J (p, q) of the direction y[2n:4n] in out[2n:4n].
+    J (p, q) of the direction y[2n:4n] in out[2n:4n]; with modes Phi, (q_t, q_tt) of the
+    modal state y = (q, q_t), the residual projected on Phi (`ModalModel`, no tangent).
 
-    One function of ~90 lines by design: the state's rates and the tangent's share every
+    One function of ~110 lines by design: the state's rates and the tangent's share every
     intermediate sum of one compiled pass (split, each part would recompute them).
 
     Parameters
@@ -98,37 +113,61 @@ def rates(t, y, out, tangent, W, K, P, Q, par, harm):
     t : float
         tau.
     y : numpy.ndarray
-        (Theta, Theta_t), or (Theta, Theta_t, p, q) with `tangent`.
+        (Theta, Theta_t), or (Theta, Theta_t, p, q) with `tangent`; with modes, (q, q_t).
     out : numpy.ndarray
         The rates, the shape of y.
     tangent : bool
-        Whether y carries a direction.
+        Whether y carries a direction (never with modes or a payload).
     W, K, P, Q : numpy.ndarray
         The grid's operators (`Grid`).
     par : numpy.ndarray
-        x0, hub ratio, eta, lam0 and the effects centrifugal, softening, euler, coriolis (1.0
-        on, 0.0 off), at the indices X0 .. CORIOLIS.
+        x0, hub ratio, eta, lam0, the effects centrifugal, softening, euler, coriolis (1.0
+        on, 0.0 off) and a payload's rotary inertia j / ds, at the indices X0 .. ROTARY.
     harm : numpy.ndarray
         (k omega, alpha_k, phase_k) of the drive's harmonics, shape (m, 3).
+    knots, cubic : numpy.ndarray
+        A move's spline (`_drive`): breakpoints (k + 1,) and coefficients (4, k); knots of
+        size 0 for a drive of harmonics.
+    Wd : numpy.ndarray
+        The matrix the damping's mass is made of with a payload (`damping_rows`), shape (n, n);
+        shape (0, 0): the damping acts on M.
+    Phi : numpy.ndarray
+        The modes of a modal model, shape (n, m); shape (n, 0): the full model.
     """
     n = W.shape[0]
     nn = P.shape[0]
-    lam, lam_dot = _drive(t, par, harm)
+    m = Phi.shape[1]
+    lam, lam_dot = _drive(t, par, harm, knots, cubic)
     lam2 = lam * lam
     hub, eta = par[HUB], par[ETA]
     cen, soft = par[CENTRIFUGAL] != 0.0, par[SOFTENING] != 0.0
     eul, cor = par[EULER] != 0.0, par[CORIOLIS] != 0.0
+    th = np.empty(n)
+    tht = np.empty(n)
+    if m:
+        for i in range(n):
+            a = 0.0
+            b = 0.0
+            for k in range(m):
+                a += Phi[i, k] * y[k]
+                b += Phi[i, k] * y[m + k]
+            th[i] = a
+            tht[i] = b
+    else:
+        th[:] = y[:n]
+        tht[:] = y[n : 2 * n]
     c = np.empty(n)
     s = np.empty(n)
     for i in range(n):
-        c[i] = math.cos(y[i])
-        s[i] = math.sin(y[i])
+        c[i] = math.cos(th[i])
+        s[i] = math.sin(th[i])
     M = np.empty((n, n))
     B = np.empty((n, n))
     for i in range(n):
         for j in range(n):
             M[i, j] = c[i] * W[i, j] * c[j] + s[i] * W[i, j] * s[j]
             B[i, j] = s[i] * W[i, j] * c[j] - c[i] * W[i, j] * s[j]
+    M[n - 1, n - 1] += par[ROTARY]
     fx = np.zeros(nn)
     fy = np.zeros(nn)
     for k in range(nn):
@@ -148,21 +187,54 @@ def rates(t, y, out, tangent, W, K, P, Q, par, harm):
     ny = Q @ fy
     v = np.empty(n)  # what B multiplies: Theta_t^2 (+ 2 lam Theta_t)
     for i in range(n):
-        w = y[n + i]
+        w = tht[i]
         v[i] = w * w + (2.0 * lam * w if cor else 0.0)
     a0 = np.empty(n)
     for i in range(n):
         acc = -(s[i] * nx[i] - c[i] * ny[i])
         for j in range(n):
-            acc -= K[i, j] * y[j] + B[i, j] * v[j]
+            acc -= K[i, j] * th[j] + B[i, j] * v[j]
         a0[i] = acc
+    if eul:  # the payload's rotary inertia turns with the disk
+        a0[n - 1] -= par[ROTARY] * lam_dot
+    own = Wd.shape[0] > 0  # the damping's own mass (a payload's is undamped)
+    if own:
+        for i in range(n):
+            acc = 0.0
+            for j in range(n):
+                acc += (c[i] * c[j] + s[i] * s[j]) * Wd[i, j] * tht[j]
+            a0[i] -= eta * acc
+    damp = 0.0 if own else eta
+    if m:  # Phi' M Phi q_tt = Phi' a0: the Galerkin projection
+        Mr = np.empty((m, m))
+        br = np.empty(m)
+        for a in range(m):
+            acc = 0.0
+            for i in range(n):
+                acc += Phi[i, a] * a0[i]
+            br[a] = acc
+            for b in range(m):
+                acc = 0.0
+                for i in range(n):
+                    row = 0.0
+                    for j in range(n):
+                        row += M[i, j] * Phi[j, b]
+                    acc += Phi[i, a] * row
+                Mr[a, b] = acc
+        pr = np.empty(m, dtype=np.int64)
+        _lu(Mr, pr)
+        _lu_solve(Mr, pr, br)
+        for a in range(m):
+            out[a] = y[m + a]
+            out[m + a] = br[a] - damp * y[m + a]
+        return
     LU = M.copy()
     piv = np.empty(n, dtype=np.int64)
     _lu(LU, piv)
     _lu_solve(LU, piv, a0)
     for i in range(n):
         out[i] = y[n + i]
-        out[n + i] = a0[i] - eta * y[n + i]
+        out[n + i] = a0[i] - damp * y[n + i]
     if not tangent:
         return
     # J (p, q) = (q, M^-1 (dr p - dv q) - eta q): docs/stability.md, "The tangent without the
@@ -209,7 +281,7 @@ def _rms(x):
 
 
 @njit(cache=True)
-def _initial_step(t, y, f, t_end, rtol, atol, tangent, W, K, P, Q, par, harm):
+def _initial_step(t, y, f, t_end, rtol, atol, tangent, model):
     """scipy's `select_initial_step` for order 7 (Hairer, Norsett and Wanner, II.4)."""
     length = abs(t_end - t)
     scale = atol + np.abs(y) * rtol
@@ -218,7 +290,7 @@ def _initial_step(t, y, f, t_end, rtol, atol, tangent, W, K, P, Q, par, harm):
     h0 = 1e-6 if (d0 < 1e-5 or d1 < 1e-5) else 0.01 * d0 / d1
     h0 = min(h0, length)
     f1 = np.empty(y.size)
-    rates(t + h0, y + h0 * f, f1, tangent, W, K, P, Q, par, harm)
+    rates(t + h0, y + h0 * f, f1, tangent, *model)
     d2 = _rms((f1 - f) / scale) / h0
     if d1 <= 1e-15 and d2 <= 1e-15:
         h1 = max(1e-6, h0 * 1e-3)
@@ -228,7 +300,7 @@ def _initial_step(t, y, f, t_end, rtol, atol, tangent, W, K, P, Q, par, harm):
 
 
 @njit(cache=True)
-def advance(y, stops, h, rtol, atol, tangent, W, K, P, Q, par, harm, saved, counts):
+def advance(y, stops, h, rtol, atol, tangent, model, saved, counts):
     """DOP853 from stops[0] through every later stop, as scipy's `DOP853` steps.
 
     One loop of ~70 lines by design: step, error norm, step-size control and the stops in
@@ -249,8 +321,8 @@ def advance(y, stops, h, rtol, atol, tangent, W, K, P, Q, par, harm, saved, coun
         Absolute tolerances, the shape of y.
     tangent : bool
         Whether y carries a direction (`rates`).
-    W, K, P, Q, par, harm
-        The model (`rates`).
+    model : tuple
+        What `rates` reads after `tangent`: W, K, P, Q, par, harm, knots, cubic, Wd, Phi.
     saved : numpy.ndarray
         saved[k - 1] <- y at stops[k], shape (stops.size - 1, y.size).
     counts : numpy.ndarray
@@ -267,13 +339,11 @@ def advance(y, stops, h, rtol, atol, tangent, W, K, P, Q, par, harm, saved, coun
     d = y.size
     Ks = np.zeros((_S + 1, d))
     f = np.empty(d)
-    rates(stops[0], y, f, tangent, W, K, P, Q, par, harm)
+    rates(stops[0], y, f, tangent, *model)
     counts[0] += 1
     t = stops[0]
     if h <= 0.0:
-        h = _initial_step(
-            t, y, f, stops[stops.size - 1], rtol, atol, tangent, W, K, P, Q, par, harm
-        )
+        h = _initial_step(t, y, f, stops[stops.size - 1], rtol, atol, tangent, model)
         counts[0] += 1
     y_new = np.empty(d)
     dy = np.empty(d)
@@ -294,12 +364,12 @@ def advance(y, stops, h, rtol, atol, tangent, W, K, P, Q, par, harm, saved, coun
                     dy[:] = 0.0
                     for j in range(st):
                         dy += _A[st, j] * Ks[j]
-                    rates(t + _C[st] * step, y + step * dy, Ks[st], tangent, W, K, P, Q, par, harm)
+                    rates(t + _C[st] * step, y + step * dy, Ks[st], tangent, *model)
                 dy[:] = 0.0
                 for j in range(_S):
                     dy += _B[j] * Ks[j]
                 y_new[:] = y + step * dy
-                rates(t_new, y_new, Ks[_S], tangent, W, K, P, Q, par, harm)
+                rates(t_new, y_new, Ks[_S], tangent, *model)
                 counts[0] += _S
                 e5 = 0.0
                 e3 = 0.0

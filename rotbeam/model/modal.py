@@ -12,7 +12,7 @@ import numpy as np
 from scipy.linalg import eig
 
 from ..config.errors import RotbeamInputError
-from .base import DiscreteModel, Residual
+from .base import DiscreteModel, Kernel, Residual
 from .params import Dimensionless
 
 
@@ -108,6 +108,31 @@ class ModalModel(DiscreteModel):
     def damped(self) -> bool:
         """Whether the full model is damped."""
         return self.full.damped
+
+    def kernel(self, tangent: bool = True) -> tuple[Kernel | None, str]:
+        """The full model's compiled march with its right-hand side projected on the modes
+        (`rotbeam.model.elastica_kernel.rates` with Phi): where the full model offers one
+        without a tangent; never with a tangent.
+
+        Parameters
+        ----------
+        tangent : bool
+            Whether the march will carry a tangent.
+
+        Returns
+        -------
+        kernel : Kernel or None
+            The march and the full model's arrays with Phi last, or None.
+        why_not : str
+            '' with arguments, else the reason.
+        """
+        if tangent:
+            return None, "the modal model's tangent is not in the kernel"
+        kernel, why_not = self.full.kernel(tangent=False)
+        if kernel is None:
+            return None, why_not
+        phi = np.ascontiguousarray(self.phi, dtype=float)
+        return Kernel(kernel.advance, kernel.rates, (*kernel.arguments[:-1], phi)), ""
 
     def residual_rows(
         self,

@@ -22,6 +22,7 @@ from ..model.criterion import delta_rms, rms
 from ..model.modes import resonance_frequency_hz
 from ..solve.ivp import CUT, FAILED, IvpInterval
 from ..solve.quasistatic import QuasiStaticError, quasistatic_series, solve_static
+from ..solve.stepping import EXPLICIT_TOL, NONSTIFF, CompiledStepper, stiffest_rate
 from ..solve.system import FirstOrderSystem
 from .observables import OBSERVABLES, States, compare, observable_names, still
 from .scene import Scene, folded, model_name
@@ -204,8 +205,10 @@ def simulate_move(
     the move's dOmega/dt acting from t = 0 (`drive.move_start: quasistatic` starts it instead in
     the quasi-static state of the first sample, its rate from the quasi-static series: a move
     that continues a motion the beam followed quasi-statically).  Radau with the exact Jacobian
-    at numerics.rtol, in MOVE_WINDOWS windows, samples y_m PER_PERIOD times per first-mode
-    period (at least MOVE_SAMPLES over the move); after the move the disk
+    at numerics.rtol (its right-hand side compiled where the model offers a kernel; where the
+    explicit method's stability allows, the compiled DOP853 march instead, `_compiled_suits`),
+    in MOVE_WINDOWS windows, samples y_m PER_PERIOD times per first-mode period (at least
+    MOVE_SAMPLES over the move); after the move the disk
     turns at its last speed for `drive.settle` seconds or, without it, first-mode periods until
     |y_m| over one stays below CALM of the peak (at most SETTLE_PERIODS).  The wall time is
     bounded by numerics.max_seconds; a run cut short says so in `converged` and `message`.
@@ -250,10 +253,11 @@ def simulate_move(
         z = _moving_state(taus, theta_qs)
     else:
         z = _resting_state(model, law.lam(0.0))
-    system = FirstOrderSystem(model, t0 + scene.numerics.max_seconds)
+    system = FirstOrderSystem(model, t0 + scene.numerics.max_seconds, compiled=True)
     w1 = 2.0 * math.pi * f1_max * T
     scale = float(np.max(np.abs(theta_qs))) or 1e-6
-    run = _Stepper(system, scene.numerics.rtol, scale, w1, _reporter(progress, scene, law, f1_end))
+    run = _Stepper(system, scene.numerics.rtol, scale, w1, _reporter(progress, scene, law, f1_end),
+                   _compiled_suits(model, dt))  # fmt: skip
     ok, message = True, "through the move"
     for end in law.duration * np.arange(1, MOVE_WINDOWS + 1) / MOVE_WINDOWS:
         ok, message = run.through(run.z if run.z is not None else z, taus, float(end))
@@ -328,9 +332,18 @@ def _reporter(progress, scene: Scene, law, f1_end: float) -> Callable[[float], N
     return lambda tau: progress(tau * T, planned)
 
 
+def _compiled_suits(model, dt: float) -> bool:
+    """Whether the compiled DOP853 march steps the move: the model offers one without a
+    tangent (`DiscreteModel.kernel`) and stability bounds its step less than the samples do,
+    the stiffest rate times the sample step below `NONSTIFF` (a few modes of the modal model;
+    the full model's top grid mode is far stiffer)."""
+    return model.kernel(tangent=False)[0] is not None and stiffest_rate(model) * dt <= NONSTIFF
+
+
 class _Stepper:
-    """Radau over consecutive windows (`rotbeam.solve.ivp.IvpInterval`), keeping the samples and
-    the state at each window's end."""
+    """Radau over consecutive windows (`rotbeam.solve.ivp.IvpInterval`), or the compiled DOP853
+    march where `_compiled_suits` says so, keeping the samples and the state at each window's
+    end."""
 
     def __init__(
         self,
@@ -339,12 +352,18 @@ class _Stepper:
         scale: float,
         rate: float,
         report: Callable[[float], None] | None = None,
+        compiled: bool = False,
     ) -> None:
         self.system, self.report = system, report
         n = system.n
         a = ATOL_SHARE * rtol * scale  # the angles' scale: the quasi-static response's
         atol = np.concatenate([np.full(n, a), np.full(n, a * rate)])  # the rates': times w1
         self.ivp = IvpInterval(system.rhs, "Radau", rtol, atol, system.jac)
+        self.march = None
+        if compiled:  # DOP853's error estimate is looser than Radau's at one rtol
+            self.march = CompiledStepper(
+                system.model, EXPLICIT_TOL * rtol, EXPLICIT_TOL * atol, tangent=False
+            )
         self.times: list[float] = []
         self.samples: list[np.ndarray] = []
         self.rates: list[np.ndarray] = []
@@ -355,12 +374,14 @@ class _Stepper:
     @property
     def nfev(self) -> int:
         """Right-hand-side evaluations of every window so far."""
-        return self.ivp.nfev
+        return self.ivp.nfev if self.march is None else int(self.march.counts[0])
 
     def through(self, z: np.ndarray, t_eval: np.ndarray, t_end: float) -> tuple[bool, str]:
         """From state z at self.tau to t_end, sampled at t_eval (those before t_end)."""
         n = self.system.n
         t_eval = t_eval[(t_eval >= self.tau) & (t_eval < t_end)]
+        if self.march is not None:
+            return self._through_compiled(z, t_eval, t_end)
         sol = self.ivp.run(self.tau, t_end, z, np.append(t_eval, t_end))
         if sol.status == CUT:
             self.ok = False
@@ -372,6 +393,27 @@ class _Stepper:
         self.samples += list(sol.y[:-1, :n])
         self.rates += list(sol.y[:-1, n:])
         self.z, self.tau = sol.y[-1], t_end
+        if self.report is not None:
+            self.report(t_end)
+        return True, "through the move"
+
+    def _through_compiled(
+        self, z: np.ndarray, t_eval: np.ndarray, t_end: float
+    ) -> tuple[bool, str]:
+        """`through` by the compiled march: a step never crosses a sample; the deadline is
+        checked between windows."""
+        n = self.system.n
+        if time.perf_counter() > self.system.deadline:
+            self.ok = False
+            return False, f"cut by the time budget at t = {self.tau:.4g} T"
+        saved, why = self.march.states(np.concatenate([[self.tau], t_eval, [t_end]]), z)
+        if why:
+            self.ok = False
+            return False, f"integrator failed at t = {self.tau:.4g} T: {why}"
+        self.times += list(t_eval)
+        self.samples += list(saved[:-1, :n])
+        self.rates += list(saved[:-1, n:])
+        self.z, self.tau = saved[-1], t_end
         if self.report is not None:
             self.report(t_end)
         return True, "through the move"

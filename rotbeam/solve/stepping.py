@@ -181,6 +181,8 @@ class CompiledStepper(PeriodStepper):
         Relative tolerance.
     atol : numpy.ndarray
         Absolute tolerances of the state, shape (2 n,).
+    tangent : bool
+        Whether `tangent` will be asked for (without, the kernel may cover more models).
 
     Attributes
     ----------
@@ -191,9 +193,12 @@ class CompiledStepper(PeriodStepper):
     name = "DOP853 (compiled)"
     stiff_steps = 2000
 
-    def __init__(self, model: DiscreteModel, rtol: float, atol: np.ndarray) -> None:
-        kernel = model_kernel(model)
+    def __init__(
+        self, model: DiscreteModel, rtol: float, atol: np.ndarray, tangent: bool = True
+    ) -> None:
+        kernel = model_kernel(model, tangent)
         self._advance_kernel, self._args = kernel.advance, kernel.arguments
+        self._carries_tangent = tangent
         self._rtol = float(rtol)
         self._atol = {False: np.ascontiguousarray(atol, dtype=float)}
         self._atol[True] = _tangent_atol(self._atol[False])
@@ -206,7 +211,7 @@ class CompiledStepper(PeriodStepper):
         saved = np.empty((stops.size - 1, y.size))
         before = int(self.counts[1])
         status, h = self._advance_kernel(y, stops, self._h[tangent], self._rtol,
-                                         self._atol[tangent], tangent, *self._args, saved,
+                                         self._atol[tangent], tangent, self._args, saved,
                                          self.counts)  # fmt: skip
         self._h[tangent] = h
         self.steps = int(self.counts[1]) - before
@@ -221,8 +226,30 @@ class CompiledStepper(PeriodStepper):
         y, _, msg = self._advance(np.array([ta, tb], dtype=float), z, False)
         return y, msg
 
+    def states(self, stops: np.ndarray, z: np.ndarray) -> tuple[np.ndarray, str]:
+        """The state at every stop after the first, from z at the first.
+
+        Parameters
+        ----------
+        stops : numpy.ndarray
+            Non-decreasing instants; no step crosses one.
+        z : numpy.ndarray
+            The state at stops[0].
+
+        Returns
+        -------
+        saved : numpy.ndarray
+            Shape (stops.size - 1, z.size); rows past a failure are not filled.
+        message : str
+            '' when every stop was reached, else why not.
+        """
+        _, saved, msg = self._advance(np.asarray(stops, dtype=float), z, False)
+        return saved, msg
+
     def tangent(self, ta, tb, y, t_eval):
         """(z, v) at tb and the samples (`PeriodStepper.tangent`)."""
+        if not self._carries_tangent:
+            raise ValueError("this march was built without a tangent")
         if t_eval is None:
             y_end, _, msg = self._advance(np.array([ta, tb], dtype=float), y, True)
             return y_end, None, msg
@@ -337,13 +364,15 @@ def compiled_cover(model: DiscreteModel) -> str:
     return model.kernel()[1]
 
 
-def model_kernel(model: DiscreteModel) -> Kernel:
+def model_kernel(model: DiscreteModel, tangent: bool = True) -> Kernel:
     """The compiled march the model offers (`DiscreteModel.kernel`).
 
     Parameters
     ----------
     model : DiscreteModel
         A model that offers one (`compiled_cover`).
+    tangent : bool
+        Whether the march will carry a tangent.
 
     Returns
     -------
@@ -355,7 +384,7 @@ def model_kernel(model: DiscreteModel) -> Kernel:
     ValueError
         For a model that offers no kernel for its scene (the reason in the message).
     """
-    kernel, why_not = model.kernel()
+    kernel, why_not = model.kernel(tangent)
     if kernel is None:
         raise ValueError(why_not)
     return kernel

@@ -24,16 +24,27 @@ class FirstOrderSystem:
     deadline : float
         A `time.perf_counter` value after which `rhs` raises `OutOfTime`, so that solve_ivp
         stops inside a step (default: never).
+    compiled : bool
+        `rhs` by the compiled right-hand side where the model offers one
+        (`DiscreteModel.kernel`, without a tangent; equal to the numpy model's to round-off).
     """
 
-    def __init__(self, model: DiscreteModel, deadline: float = math.inf) -> None:
+    def __init__(
+        self, model: DiscreteModel, deadline: float = math.inf, compiled: bool = False
+    ) -> None:
         self.model, self.deadline = model, deadline
         self.n = model.n
+        kernel = model.kernel(tangent=False)[0] if compiled else None
+        self._kernel = kernel
 
     def rhs(self, tau: float, z: np.ndarray) -> np.ndarray:
         """(Theta_t, Theta_tt) at tau."""
         if time.perf_counter() > self.deadline:
             raise OutOfTime
+        if self._kernel is not None:
+            out = np.empty(2 * self.n)
+            self._kernel.rates(tau, z, out, False, *self._kernel.arguments)
+            return out
         n, dl = self.n, self.model.dl
         acc = self.model.acceleration(z[:n], z[n:], dl.lam(tau), dl.lam_dot(tau))
         return np.concatenate([z[n:], acc])
