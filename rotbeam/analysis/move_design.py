@@ -539,7 +539,7 @@ class _Search:
         self.motions: dict[tuple, tuple[Motion, float]] = {}
         #: the last root's spacing over the linear half period: where the next family starts
         self.shift = 1.0
-        #: family -> its least worst inner residual less its second mode's amplitude
+        #: family -> what a second-mode train could bring it down to (`_floor`)
         self.floors: dict[Family, float] = {}
         self.families = self._families()
 
@@ -850,15 +850,27 @@ class _Search:
         least = self._least(fam)
         if fam.kind in ("zv", "zvd") and least.residual <= target:
             self.shift = least.params[0] / self.halves[0]
-        second = abs(self._inner_run(0, fam, least.params)[1][1])
+        self.floors[fam] = self._floor(fam)
         worst = self.worst(least)
-        self.floors[fam] = worst - second
         if worst > INNER_SLACK * self.tol:
             return []
         if worst > target:
             return [least]
         short = self._shorten(fam, least, target, lo)
         return [short, least] if short is not least else [least]
+
+    def _floor(self, fam: Family) -> float:
+        """What a second-mode train could bring the family down to: the least over its
+        candidates of the inner residual less the second mode's amplitude, the largest over the
+        family's targets (the least over all candidates, not the least-residual one's: where
+        the secant steps stall before the first mode is cancelled, another candidate may hold
+        less of it)."""
+
+        def part(ev: Evaluation) -> float:
+            runs = [self.runs[(k, fam, ev.params)] for k in self.targets(fam)]
+            return max(r - abs(amps[1]) if math.isfinite(r) else math.inf for r, amps in runs)
+
+        return min(part(e) for e in self.evaluations if e.family == fam)
 
     def one_train_misses(self) -> bool:
         """Whether one ZV train tuned to the nominal beam misses the box in linear theory: at
