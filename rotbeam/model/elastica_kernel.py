@@ -205,37 +205,21 @@ def rates(t, y, out, tangent, W, K, P, Q, par, harm, knots, cubic, Wd, Phi):
                 acc += (c[i] * c[j] + s[i] * s[j]) * Wd[i, j] * tht[j]
             a0[i] -= eta * acc
     damp = 0.0 if own else eta
+    k = m if m else n  # the unknowns solved for: q_tt, or Theta_tt
     if m:  # Phi' M Phi q_tt = Phi' a0: the Galerkin projection
-        Mr = np.empty((m, m))
-        br = np.empty(m)
-        for a in range(m):
-            acc = 0.0
-            for i in range(n):
-                acc += Phi[i, a] * a0[i]
-            br[a] = acc
-            for b in range(m):
-                acc = 0.0
-                for i in range(n):
-                    row = 0.0
-                    for j in range(n):
-                        row += M[i, j] * Phi[j, b]
-                    acc += Phi[i, a] * row
-                Mr[a, b] = acc
-        pr = np.empty(m, dtype=np.int64)
-        _lu(Mr, pr)
-        _lu_solve(Mr, pr, br)
-        for a in range(m):
-            out[a] = y[m + a]
-            out[m + a] = br[a] - damp * y[m + a]
-        return
-    LU = M.copy()
-    piv = np.empty(n, dtype=np.int64)
+        MPhi = M @ Phi
+        LU = np.ascontiguousarray(Phi.T @ MPhi)
+        rhs = Phi.T @ a0
+    else:
+        LU = M.copy()
+        rhs = a0
+    piv = np.empty(k, dtype=np.int64)
     _lu(LU, piv)
-    _lu_solve(LU, piv, a0)
-    for i in range(n):
-        out[i] = y[n + i]
-        out[n + i] = a0[i] - damp * y[n + i]
-    if not tangent:
+    _lu_solve(LU, piv, rhs)
+    for i in range(k):
+        out[i] = y[k + i]
+        out[k + i] = rhs[i] - damp * y[k + i]
+    if m or not tangent:
         return
     # J (p, q) = (q, M^-1 (dr p - dv q) - eta q): docs/stability.md, "The tangent without the
     # Jacobian"; dL p = S W (a p) - C W (b p) + (C n_x + S n_y) p
