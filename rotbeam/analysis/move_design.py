@@ -47,7 +47,7 @@ INNER_MODES = 2
 INNER_SETTLE_PERIODS = 1.5
 CHECK_SETTLE_PERIODS = 2.0
 #: the inner model's stepper tolerance (at most; the scene's if looser): its residual within
-#: 3e-6 L of rtol = 1e-7's (docs/design.md)
+#: 3e-7 L of Radau's at rtol = 1e-8 (docs/design.md)
 INNER_RTOL = 1e-5
 #: without a jerk limit the design's acceleration ramps over this share of the shortest
 #: first-mode period (a step rings every mode of the beam and costs the stepper 20x more); the
