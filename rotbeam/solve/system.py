@@ -34,8 +34,7 @@ class FirstOrderSystem:
     ) -> None:
         self.model, self.deadline = model, deadline
         self.n = model.n
-        kernel = model.kernel(tangent=False)[0] if compiled else None
-        self._kernel = kernel
+        self._kernel = model.kernel(tangent=False)[0] if compiled else None
 
     def rhs(self, tau: float, z: np.ndarray) -> np.ndarray:
         """(Theta_t, Theta_tt) at tau."""
