@@ -305,3 +305,24 @@ def test_a_tangent_is_refused_where_the_kernel_has_none_in_one_line():
     march = stepping.CompiledStepper(modal, 1e-6, np.full(4, 1e-9), tangent=False)
     with pytest.raises(ValueError, match="without a tangent"):
         march.tangent(0.0, 0.1, np.zeros(8), None)
+
+
+@pytest.mark.parametrize("name", ["default", "payload", "printed"])
+def test_the_compiled_first_order_system_is_the_numpy_one(name):
+    """`FirstOrderSystem(compiled=True)` (the steady state's time stepping, Radau's
+    classification periods, a move) takes the kernel's right-hand side where the model offers
+    one without a tangent, equal to the numpy model's to round-off, and the numpy model's
+    itself where it offers none (the printed appendix)."""
+    from rotbeam.solve.system import FirstOrderSystem
+
+    m = {"default": DiscreteElastica(scene_dl(Effects(coriolis=True)), 8),
+         "payload": DiscreteElastica(scene_dl(Effects(), **PAYLOAD), 8),
+         "printed": PrintedElastica(scene_dl(Effects(), CALM), 6, ("symS",))}[name]  # fmt: skip
+    compiled, numpy_ = FirstOrderSystem(m, compiled=True), FirstOrderSystem(m)
+    assert (compiled._kernel is None) == (name == "printed")
+    for seed, t in enumerate((0.1, 0.9, 2.3)):
+        th, tt, _, _ = random_point(m.n, seed)
+        z = np.concatenate([th, tt])
+        want = numpy_.rhs(t, z)
+        np.testing.assert_allclose(compiled.rhs(t, z), want, rtol=0,
+                                   atol=1e-12 * np.abs(want).max())  # fmt: skip

@@ -390,7 +390,7 @@ class TransientStepper:
     ) -> None:
         self.model, self.dl, self.num, self.tol = model, model.dl, num, tol
         self.n, self.time_budget, self.samples = model.n, time_budget, samples
-        system = FirstOrderSystem(model, time_budget.deadline)
+        system = FirstOrderSystem(model, time_budget.deadline, compiled=True)
         method: str | type = num.method
         if num.method == "TRBDF2":
             from .trbdf2 import TRBDF2

@@ -139,7 +139,7 @@ class ImplicitStepper(_IvpStepper):
     name = "Radau"
 
     def __init__(self, model: DiscreteModel, rtol: float, atol: np.ndarray) -> None:
-        system = FirstOrderSystem(model)
+        system = FirstOrderSystem(model, compiled=True)
         aug, aug_jac = tangent_system(system.rhs, system.jac, 2 * model.n)
         tangent = IvpInterval(aug, "Radau", rtol, _tangent_atol(atol), aug_jac)
         super().__init__(IvpInterval(system.rhs, "Radau", rtol, atol, system.jac), tangent)
