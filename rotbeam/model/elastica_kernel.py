@@ -3,8 +3,8 @@ and its tangent J v (the kernel of `DiscreteElastica.acceleration` and
 `DiscreteModel.first_order_jvp`), and the embedded Runge-Kutta method of Dormand and Prince
 of order 8(5, 3) around it (scipy's `DOP853`: its tableau, error norm and step control).
 
-Imported only where a run uses it (`rotbeam.solve.stepping`), so that numba loads with the
-first time-stepped classification and never with a command that does not step.  Both live in
+Imported only where a run uses it (`DiscreteElastica.kernel`), so that numba loads with the
+first time-stepped run and never with a command that does not step.  Both live in
 this one file because numba's cache tracks the file of the function it compiles, not the files
 of the functions it calls.  Which models the kernel covers, how it is checked against the numpy
 model, and what it gains: docs/stability.md, "What a classification period costs".
