@@ -602,7 +602,7 @@ class _Search:
         of the middle frequency still (docs/design.md)."""
         half, logk = self.shift * self.halves[fam.at], math.log(decay_ratio(self.zeta))
         second = (fam.second_s, math.log(fam.second_ratio)) if fam.second_s > 0 else ()
-        base = replace(fam, second_s=0.0, second_ratio=1.0)
+        base = fam.without_second
         if second and not linear and base in self.floors:  # the family without the train's root
             return (*self._least(base).params, *second)
         if fam.kind == "zv2" and linear:  # the linear ZVD start (zv2 at equal spacings), split
@@ -610,7 +610,7 @@ class _Search:
             s1, s2 = root[0] * (1 + fam.spread), root[0] * (1 - fam.spread)
             return (s1, root[1], s2, root[1], *root[2:])
         if fam.kind == "zv2":  # one ZV train's root at each target corner, alone
-            one = replace(fam, kind="zv", spread=0.0, second_s=0.0, second_ratio=1.0)
+            one = replace(fam.without_second, kind="zv", spread=0.0)
             (s1, k1), (s2, k2) = (self._root(replace(one, at=k))[0].params
                                   for k in self.targets(fam))  # fmt: skip
             return (s1, k1 + SPLIT_LOG_RATIO, s2, k2 - SPLIT_LOG_RATIO, *second)
@@ -842,7 +842,7 @@ class _Search:
         if fam.kind == "zv" and self.boxed and self.one_train_misses():
             return []
         if fam.second_s > 0:
-            base = replace(fam, second_s=0.0, second_ratio=1.0)
+            base = fam.without_second
             if base in self.floors and self.floors[base] > INNER_SLACK * self.tol:
                 return []
         _, lo, _ = self._root(fam)

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -61,6 +61,11 @@ class Family:
     def name(self) -> str:
         """The kind, with "+m2" where a second-mode train is convolved."""
         return self.kind + ("+m2" if self.second_s > 0 else "")
+
+    @property
+    def without_second(self) -> Family:
+        """The same family without its second-mode train."""
+        return replace(self, second_s=0.0, second_ratio=1.0)
 
 
 def convolve(*trains: Shaper) -> Shaper:

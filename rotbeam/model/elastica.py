@@ -218,10 +218,15 @@ class DiscreteElastica(GyroscopicModel):
         tuple of numpy.ndarray or None
             (Md, Bd), shape (m, n, n) each, with a payload; None without one (eta M).
         """
+        W = self._damping_weights()
+        return None if W is None else self._cos_sin_rows(theta, W)
+
+    def _damping_weights(self) -> np.ndarray | None:
+        """The W the damping's mass is made of with a payload (W without the tip mass; W itself
+        with a rotary inertia alone), None without a payload (the damping acts on M)."""
         if self.grid.W_beam is None and not self.rotary:
             return None
-        W = self.grid.W if self.grid.W_beam is None else self.grid.W_beam
-        return self._cos_sin_rows(theta, W)
+        return self.grid.W if self.grid.W_beam is None else self.grid.W_beam
 
     @staticmethod
     def _cos_sin_rows(theta: np.ndarray, W: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -264,8 +269,8 @@ class DiscreteElastica(GyroscopicModel):
         """
         if type(self) is not DiscreteElastica:
             return None, f"the kernel is DiscreteElastica's, not {type(self).__name__}'s"
-        payload = self.grid.W_beam is not None or bool(self.rotary)
-        if payload and tangent:
+        Wd = self._damping_weights()
+        if Wd is not None and tangent:
             return None, "a payload (tip mass or inertia) is not in the kernel's tangent"
         flags, why_not = self._kernel_flags()
         if flags is None:
@@ -281,9 +286,7 @@ class DiscreteElastica(GyroscopicModel):
         par = np.array([g.x0, self.hub_ratio, self.eta, self.dl.law.mean, *flags, self.rotary],
                        dtype=float)  # fmt: skip
         mats = (np.ascontiguousarray(m, dtype=float) for m in (g.W, g.K, g.P, g.Q))
-        # the damping's own mass with a payload (`damping_rows`): the beam's W
-        Wd = np.zeros((0, 0)) if not payload else g.W if g.W_beam is None else g.W_beam
-        Wd = np.ascontiguousarray(Wd, dtype=float)
+        Wd = np.ascontiguousarray(np.zeros((0, 0)) if Wd is None else Wd, dtype=float)
         from . import elastica_kernel  # here: numba loads with the first compiled run only
 
         arguments = (*mats, par, *drive, Wd, np.zeros((self.n, 0)))

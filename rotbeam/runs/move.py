@@ -358,12 +358,13 @@ class _Stepper:
         n = system.n
         a = ATOL_SHARE * rtol * scale  # the angles' scale: the quasi-static response's
         atol = np.concatenate([np.full(n, a), np.full(n, a * rate)])  # the rates': times w1
-        self.ivp = IvpInterval(system.rhs, "Radau", rtol, atol, system.jac)
-        self.march = None
+        self.ivp = self.march = None
         if compiled:  # DOP853's error estimate is looser than Radau's at one rtol
             self.march = CompiledStepper(
                 system.model, EXPLICIT_TOL * rtol, EXPLICIT_TOL * atol, tangent=False
             )
+        else:
+            self.ivp = IvpInterval(system.rhs, "Radau", rtol, atol, system.jac)
         self.times: list[float] = []
         self.samples: list[np.ndarray] = []
         self.rates: list[np.ndarray] = []
@@ -374,49 +375,44 @@ class _Stepper:
     @property
     def nfev(self) -> int:
         """Right-hand-side evaluations of every window so far."""
-        return self.ivp.nfev if self.march is None else int(self.march.counts[0])
+        return self.ivp.nfev if self.ivp is not None else int(self.march.counts[0])
 
     def through(self, z: np.ndarray, t_eval: np.ndarray, t_end: float) -> tuple[bool, str]:
         """From state z at self.tau to t_end, sampled at t_eval (those before t_end)."""
         n = self.system.n
         t_eval = t_eval[(t_eval >= self.tau) & (t_eval < t_end)]
-        if self.march is not None:
-            return self._through_compiled(z, t_eval, t_end)
-        sol = self.ivp.run(self.tau, t_end, z, np.append(t_eval, t_end))
-        if sol.status == CUT:
+        step = self._radau if self.march is None else self._compiled
+        why, times, states, end = step(z, t_eval, t_end)
+        if why:
             self.ok = False
-            return False, f"cut by the time budget at t = {self.tau:.4g} T"
-        if sol.status == FAILED:
-            self.ok = False
-            return False, f"integrator failed at t = {self.tau:.4g} T: {sol.message}"
-        self.times += list(sol.t[:-1])
-        self.samples += list(sol.y[:-1, :n])
-        self.rates += list(sol.y[:-1, n:])
-        self.z, self.tau = sol.y[-1], t_end
+            return False, why
+        self.times += list(times)
+        self.samples += list(states[:, :n])
+        self.rates += list(states[:, n:])
+        self.z, self.tau = end, t_end
         if self.report is not None:
             self.report(t_end)
         return True, "through the move"
 
-    def _through_compiled(
-        self, z: np.ndarray, t_eval: np.ndarray, t_end: float
-    ) -> tuple[bool, str]:
-        """`through` by the compiled march: a step never crosses a sample; the deadline is
-        checked between windows."""
-        n = self.system.n
+    def _radau(self, z: np.ndarray, t_eval: np.ndarray, t_end: float):
+        """(why not, or ''; the sample instants; the states there; the state at t_end) by
+        Radau."""
+        sol = self.ivp.run(self.tau, t_end, z, np.append(t_eval, t_end))
+        if sol.status == CUT:
+            return f"cut by the time budget at t = {self.tau:.4g} T", None, None, None
+        if sol.status == FAILED:
+            return f"integrator failed at t = {self.tau:.4g} T: {sol.message}", None, None, None
+        return "", sol.t[:-1], sol.y[:-1], sol.y[-1]
+
+    def _compiled(self, z: np.ndarray, t_eval: np.ndarray, t_end: float):
+        """`_radau`'s answer by the compiled march: a step never crosses a sample; the deadline
+        is checked between windows."""
         if time.perf_counter() > self.system.deadline:
-            self.ok = False
-            return False, f"cut by the time budget at t = {self.tau:.4g} T"
+            return f"cut by the time budget at t = {self.tau:.4g} T", None, None, None
         saved, why = self.march.states(np.concatenate([[self.tau], t_eval, [t_end]]), z)
         if why:
-            self.ok = False
-            return False, f"integrator failed at t = {self.tau:.4g} T: {why}"
-        self.times += list(t_eval)
-        self.samples += list(saved[:-1, :n])
-        self.rates += list(saved[:-1, n:])
-        self.z, self.tau = saved[-1], t_end
-        if self.report is not None:
-            self.report(t_end)
-        return True, "through the move"
+            return f"integrator failed at t = {self.tau:.4g} T: {why}", None, None, None
+        return "", t_eval, saved[:-1], saved[-1]
 
     def y(self, model) -> np.ndarray:
         """y_m / L at every sample so far."""

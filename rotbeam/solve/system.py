@@ -27,6 +27,11 @@ class FirstOrderSystem:
     compiled : bool
         `rhs` by the compiled right-hand side where the model offers one
         (`DiscreteModel.kernel`, without a tangent; equal to the numpy model's to round-off).
+
+    Attributes
+    ----------
+    kernel : Kernel or None
+        The compiled kernel `rhs` calls, None for the numpy model's.
     """
 
     def __init__(
@@ -34,15 +39,15 @@ class FirstOrderSystem:
     ) -> None:
         self.model, self.deadline = model, deadline
         self.n = model.n
-        self._kernel = model.kernel(tangent=False)[0] if compiled else None
+        self.kernel = model.kernel(tangent=False)[0] if compiled else None
 
     def rhs(self, tau: float, z: np.ndarray) -> np.ndarray:
         """(Theta_t, Theta_tt) at tau."""
         if time.perf_counter() > self.deadline:
             raise OutOfTime
-        if self._kernel is not None:
+        if self.kernel is not None:
             out = np.empty(2 * self.n)
-            self._kernel.rates(tau, z, out, False, *self._kernel.arguments)
+            self.kernel.rates(tau, z, out, False, *self.kernel.arguments)
             return out
         n, dl = self.n, self.model.dl
         acc = self.model.acceleration(z[:n], z[n:], dl.lam(tau), dl.lam_dot(tau))
