@@ -18,6 +18,7 @@ from rotbeam.solve.certify import CERTIFICATE_SAFETY, accept_certified, monodrom
 from rotbeam.solve.continuation import FirstOrderProblem, continue_branch
 from rotbeam.solve.floquet import (
     FIRST_STEPS,
+    FIRST_TRY_MAX_INSTANTS,
     SPREAD_TOL,
     STEP_LADDER,
     FloquetResult,
@@ -326,13 +327,36 @@ def test_a_resonant_step_count_is_not_taken_on_trust():
     assert abs(fl.max_abs - converged.max_abs) <= SPREAD_TOL
 
 
+def test_a_first_try_on_an_unresolved_orbit_does_not_stand():
+    """An orbit on more instants than FIRST_TRY_MAX_INSTANTS has harmonics that 12 midpoints
+    alias: at N = 16, 36.67 rad/s, 13.7 Hz (M = 129, the tip swinging about 1 rad) 12 steps and
+    their 4-step cube agree on an unstable |mu|max near 1.2, within a tenth of its distance from
+    1.  The pass does not keep that first try: the verdict's pass and the reported one are
+    within a tenth of the distance from 1 and within SPREAD_TOL of the rule converged in the
+    step count (3000 steps: |mu|max 0.9411, stable)."""
+    dl = Dimensionless.from_physical(Beam(), Drive(omega0=36.67, f_d=13.7), Effects())
+    model = DiscreteElastica(dl, 16)
+    res = solve_periodic_adaptive(model, tail_tol=1e-3)
+    assert res.converged and res.M > FIRST_TRY_MAX_INSTANTS
+    converged = beam_floquet(model, res.theta, res.theta_t, steps=3000)
+    assert converged.stable
+    for steps in (FIRST_STEPS, FIRST_STEPS // 3):  # the trap: both far off, and agreeing
+        assert beam_floquet(model, res.theta, res.theta_t, steps=steps).max_abs > 1.1
+    verdict = beam_floquet(model, res.theta, res.theta_t, offset_atol=math.inf, mu_tol=math.inf)
+    assert verdict.stable and verdict.steps > FIRST_STEPS
+    assert abs(verdict.max_abs - converged.max_abs) <= 0.1 * (1.0 - converged.max_abs)
+    reported = beam_floquet(model, res.theta, res.theta_t)
+    assert abs(reported.max_abs - converged.max_abs) <= SPREAD_TOL
+
+
 @pytest.mark.parametrize("integrate", [False, True])
 def test_floquet_tol_sets_how_far_the_reported_multipliers_are_resolved(integrate):
-    """numerics.floquet_tol: above resonance (5 rad/s, 8 Hz, N = 12; the verdict stands at the
-    first try of 12 steps) the default resolves the reported |mu|max to SPREAD_TOL of the rule
-    converged in the step count (3000 steps: measured 2e-8, at 112 steps); floquet_tol = 1
-    stops where the stability verdict and the certificate did (12 steps, 8e-5 off, within a
-    tenth of its distance from 1), and the orbit and its RMS are the same."""
+    """numerics.floquet_tol: above resonance (5 rad/s, 8 Hz, N = 12, an orbit of M = 33: the
+    verdict stands at 37 steps, checked against the first try's 12) the default resolves the
+    reported |mu|max to SPREAD_TOL of the rule converged in the step count (3000 steps:
+    measured 2e-8, at 112 steps); floquet_tol = 1 stops where the stability verdict and the
+    certificate did (37 steps, 1.1e-6 off, within a tenth of its distance from 1), and the
+    orbit and its RMS are the same."""
     dl, model, _ = _beam_orbit(5.0, 8.0)
     fine = steady(dl, Numerics(N=12, integrate=integrate))
     loose = steady(dl, Numerics(N=12, integrate=integrate, floquet_tol=1.0))
@@ -341,7 +365,8 @@ def test_floquet_tol_sets_how_far_the_reported_multipliers_are_resolved(integrat
     converged = beam_floquet(model, orbit.theta, orbit.theta_t, steps=3000)
     assert fine.floquet.spread <= SPREAD_TOL
     assert abs(fine.floquet.max_abs - converged.max_abs) <= SPREAD_TOL
-    assert loose.floquet.steps == FIRST_STEPS < fine.floquet.steps
+    assert orbit.M > FIRST_TRY_MAX_INSTANTS and loose.floquet.steps == STEP_LADDER[1]
+    assert loose.floquet.steps < fine.floquet.steps
     assert abs(loose.floquet.max_abs - converged.max_abs) <= 0.1 * (1.0 - converged.max_abs)
     assert loose.floquet.stable == fine.floquet.stable == converged.stable
     np.testing.assert_array_equal(y_m(dl, loose), y_m(dl, fine))

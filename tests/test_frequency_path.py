@@ -1,6 +1,8 @@
 """A scene next to a resonance peak, solved alone: where Newton fails from the scene's own start
 and from the amplitude continuation, its orbit is reached as an upward sweep reaches it
-(`rotbeam.solve.periodic.FREQUENCY_PATH`) instead of by tens of periods of time stepping."""
+(`rotbeam.solve.periodic.FREQUENCY_PATH`) or, past the fold where that branch ends, as a
+downward sweep reaches it (`FREQUENCY_PATH_ABOVE`), instead of by tens of periods of time
+stepping."""
 
 from __future__ import annotations
 
@@ -8,34 +10,51 @@ import pytest
 
 import rotbeam
 from rotbeam.runs.scene import build_scene
-from rotbeam.solve.periodic import solve_periodic_adaptive
+from rotbeam.solve.periodic import (
+    FREQUENCY_PATH,
+    FREQUENCY_PATH_ABOVE,
+    _frequency_continuation,
+    solve_periodic_adaptive,
+)
 
 #: N = 16, 5 rad/s: the resonance peak of the first mode is near 6.8 Hz; at 6.75 Hz the scene's
 #: own start and the amplitude continuation do not converge
 NEAR_PEAK = {"drive": {"omega0": 5, "f_d": 6.75}, "numerics": {"N": 16}}
+#: N = 8, 36.67 rad/s, 13.7 Hz (f_d / f_0 = 0.95): the branch followed up from 0.9 f_d ends at
+#: a fold near 0.975 f_d, and the resonant orbit, the tip swinging about 1 rad, is reached
+#: only from above
+PAST_FOLD = {"drive": {"omega0": 36.67, "f_d": 13.7}, "numerics": {"N": 8}}
+
+SCENES = [(NEAR_PEAK, FREQUENCY_PATH), (PAST_FOLD, FREQUENCY_PATH_ABOVE)]
 
 
-def test_the_scene_needs_the_path():
-    """Without the path, the collocation of this scene alone fails (else the next test would
-    not exercise it)."""
-    scene = build_scene(NEAR_PEAK)
+@pytest.mark.parametrize("spec, path", SCENES, ids=["from below", "from above"])
+def test_the_scene_needs_the_path(spec, path):
+    """Without the frequency continuation the collocation of the scene alone fails (else the
+    next test would not exercise it); the scene past the fold is not reached from below."""
+    scene = build_scene(spec)
     num = scene.numerics
     model = scene.model(num.N)
-    alone = solve_periodic_adaptive(model, tail_tol=num.tail_tol, from_below=False)
+    alone = solve_periodic_adaptive(model, tail_tol=num.tail_tol, by_frequency=False)
     assert not alone.converged
+    if path is FREQUENCY_PATH_ABOVE:
+        below = _frequency_continuation(model, 17, num.tail_tol, 129, 1e-10, FREQUENCY_PATH)
+        assert below is None
     reached = solve_periodic_adaptive(model, tail_tol=num.tail_tol)
-    assert reached.converged and "continued in the frequency" in reached.message
+    assert reached.converged
+    assert f"continued in the frequency from {path[0]:g} f_d" in reached.message
 
 
-def test_orbit_continued_from_below_is_the_time_stepped_steady_state():
+@pytest.mark.parametrize("spec, path", SCENES, ids=["from below", "from above"])
+def test_orbit_continued_in_the_frequency_is_the_time_stepped_steady_state(spec, path):
     """The scene alone reports the certified collocated orbit; time stepping from the
-    quasi-static state (73 periods) settles on the same RMS (measured 4.2e-5 apart: the
-    steady-state tolerance's order)."""
-    direct = rotbeam.simulate(build_scene(NEAR_PEAK))
+    quasi-static state (73 periods from below, 150 from above) settles on the same RMS
+    (measured 4.2e-5 apart for both: the steady-state tolerance's order)."""
+    direct = rotbeam.simulate(build_scene(spec))
     assert direct.dynamic.converged
     assert direct.dynamic.message.startswith("collocation orbit")
     assert direct.dynamic.periods == 0
-    stepped_scene = build_scene({**NEAR_PEAK, "numerics": {"N": 16, "start": "quasistatic"}})
-    stepped = rotbeam.simulate(stepped_scene)
+    numerics = {**spec["numerics"], "start": "quasistatic"}
+    stepped = rotbeam.simulate(build_scene({**spec, "numerics": numerics}))
     assert stepped.dynamic.converged and stepped.dynamic.periods > 10
     assert direct.rms_dynamic == pytest.approx(stepped.rms_dynamic, rel=2e-4)

@@ -33,6 +33,14 @@ STABLE_MARGIN = 1e-6
 #: over the period, the common case (docs/stability.md)
 FIRST_STEPS = 12
 
+#: the most instants an orbit may have for the first try to stand on its own: its FIRST_STEPS
+#: midpoints sample J(t) without aliasing only where the orbit's harmonics are below
+#: FIRST_STEPS (M <= 2 FIRST_STEPS - 1; in practice the orbits of M0 = 17 instants).  A finer
+#: orbit starts the ladder at once, the first try its first check: at N = 16, 36.67 rad/s,
+#: 13.7 Hz (M = 129, the tip swinging 1 rad) 12 and 4 steps agree on |mu|max 1.198 and 1.202,
+#: an unstable verdict, where the orbit's is 0.941 (docs/stability.md)
+FIRST_TRY_MAX_INSTANTS = 2 * FIRST_STEPS - 1
+
 #: the step counts after a first try that does not stand: each is checked against the one before
 #: and kept when the two agree.  Consecutive counts are coprime (3 S + 1): the exponential
 #: midpoint rule's error peaks at step counts that alias a mode's frequency onto a low harmonic
@@ -350,11 +358,11 @@ def orbit_floquet(
     its states at M equispaced instants of the period.
 
     The orbit between the instants is Z's trigonometric interpolant (`trig_eval`).  Without
-    `steps` the monodromy first tries FIRST_STEPS steps and keeps them when the coarse product
-    (a third of the steps, from the same exponentials) agrees with it (`first_try_stands`);
-    otherwise it takes the counts of STEP_LADDER in turn, each checked against the one before,
-    until one stands or the ladder ends (docs/stability.md, "How the multipliers are
-    computed").
+    `steps` the monodromy first tries FIRST_STEPS steps and keeps them when the orbit has at
+    most FIRST_TRY_MAX_INSTANTS instants and the coarse product (a third of the steps, from the
+    same exponentials) agrees with it (`first_try_stands`); otherwise it takes the counts of
+    STEP_LADDER in turn, each checked against the one before, until one stands or the ladder
+    ends (docs/stability.md, "How the multipliers are computed").
 
     Parameters
     ----------
@@ -394,12 +402,14 @@ def orbit_floquet(
     size = float(np.max(np.abs(Z)))
     previous = after
     if previous is None:
-        Phi, defect, low = _monodromy(jac, Z, period, FIRST_STEPS, rhs, rows, coarse=True)
+        resolved = Z.shape[0] <= FIRST_TRY_MAX_INSTANTS
+        Phi, defect, low = _monodromy(jac, Z, period, FIRST_STEPS, rhs, rows, coarse=resolved)
         previous = multipliers_of(Phi, FIRST_STEPS, 0.0, defect)
-        previous.coarse = multipliers_of(low[0], FIRST_STEPS // 3, 0.0, low[1])
-        if first_try_stands(previous, size, offset_atol, mu_tol):
-            previous.seconds = time.perf_counter() - t0
-            return previous
+        if resolved:
+            previous.coarse = multipliers_of(low[0], FIRST_STEPS // 3, 0.0, low[1])
+            if first_try_stands(previous, size, offset_atol, mu_tol):
+                previous.seconds = time.perf_counter() - t0
+                return previous
     for count in (S for S in STEP_LADDER if S > previous.steps):
         Phi, defect, _ = _monodromy(jac, Z, period, count, rhs, rows, coarse=False)
         current = multipliers_of(Phi, count, 0.0, defect)

@@ -455,25 +455,34 @@ def _amplitude_continuation(model: DiscreteModel, M: int, rtol: float, steps: in
 
 #: where a scene's own start and the amplitude continuation fail (next to a resonance peak),
 #: its orbit is reached as an upward sweep reaches it: solved at the first of these fractions
-#: of its drive frequency and continued through the others to its own
+#: of its drive frequency and continued through the others to its own ...
 FREQUENCY_PATH = (0.9, 0.95, 0.98)
+#: ... and where that branch ends at a fold short of f_d (past the end of the lower branch of
+#: a resonance curve bent to lower frequencies, where the resonant orbit is the only one), as
+#: a downward sweep reaches it
+FREQUENCY_PATH_ABOVE = (1.1, 1.05, 1.02)
 
 
 def _frequency_continuation(
-    model: DiscreteModel, M0: int, tail_tol: float, M_max: int, rtol: float
+    model: DiscreteModel,
+    M0: int,
+    tail_tol: float,
+    M_max: int,
+    rtol: float,
+    path: tuple[float, ...],
 ) -> PeriodicResult | None:
-    """The orbit continued in the drive frequency from below, along `FREQUENCY_PATH` (each
-    step `solve_periodic_adaptive` from the previous orbit, as a sweep's points); None where a
-    step does not converge."""
+    """The orbit continued in the drive frequency along `path` (fractions of f_d, each step
+    `solve_periodic_adaptive` from the previous orbit, as a sweep's points); None where a step
+    does not converge."""
     dl = model.dl
     seed = None
-    for fraction in (*FREQUENCY_PATH, 1.0):
+    for fraction in (*path, 1.0):
         at = model if fraction == 1.0 else model.at(replace(dl, omega=fraction * dl.omega))
-        res = solve_periodic_adaptive(at, M0, tail_tol, M_max, rtol, guess=seed, from_below=False)
+        res = solve_periodic_adaptive(at, M0, tail_tol, M_max, rtol, guess=seed, by_frequency=False)
         if not res.converged:
             return None
         seed = Neighbour(res.theta, at.dl.omega)
-    res.message += f" (continued in the frequency from {FREQUENCY_PATH[0]:g} f_d)"
+    res.message += f" (continued in the frequency from {path[0]:g} f_d)"
     return res
 
 
@@ -556,7 +565,7 @@ def solve_periodic_adaptive(
     M_max: int = 129,
     rtol: float = 1e-10,
     guess: np.ndarray | Neighbour | None = None,
-    from_below: bool = True,
+    by_frequency: bool = True,
 ) -> PeriodicResult:
     """`solve_periodic` with M refined (2M - 1) until the harmonic tail is below `tail_tol`.
 
@@ -581,8 +590,9 @@ def solve_periodic_adaptive(
         An orbit (M', n) of a neighbouring scene, or a `Neighbour`: continuation
         (`continued`); where no continued orbit converges and refines, the scene is solved
         as without a guess: from the linear guess, then by continuation in the amplitude,
-        then in the frequency from below (`FREQUENCY_PATH`).
-    from_below : bool
+        then in the frequency from below (`FREQUENCY_PATH`), then from above
+        (`FREQUENCY_PATH_ABOVE`).
+    by_frequency : bool
         Whether a scene solved alone may be reached by continuation in the frequency (False
         on the path of that continuation itself).
 
@@ -610,9 +620,13 @@ def solve_periodic_adaptive(
             finer, resolved = resolved, None
         res = finer
     if not res.converged and not alone:  # the continued orbit did not refine: solve alone
-        return solve_periodic_adaptive(model, M0, tail_tol, M_max, rtol, from_below=from_below)
-    if not res.converged and alone and from_below:  # next to a resonance peak
-        res = _frequency_continuation(model, M0, tail_tol, M_max, rtol) or res
+        return solve_periodic_adaptive(model, M0, tail_tol, M_max, rtol, by_frequency=by_frequency)
+    if not res.converged and alone and by_frequency:  # next to a resonance peak
+        for path in (FREQUENCY_PATH, FREQUENCY_PATH_ABOVE):
+            reached = _frequency_continuation(model, M0, tail_tol, M_max, rtol, path)
+            if reached is not None:
+                res = reached
+                break
     if res.converged and res.harmonic_tail > tail_tol:
         res.message += f"; harmonic tail {res.harmonic_tail:.2g} > {tail_tol:g} at M={res.M}"
     return res
