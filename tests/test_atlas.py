@@ -147,6 +147,8 @@ def test_a_message_names_five_cut_lines_and_counts_the_rest():
     assert text.startswith("8 points cut short, 1 not run; line 1 (Omega_0 = 5 rad/s): 3 of 4")
     assert "line 5 (Omega_0 = 9 rad/s)" in text and "line 6 " not in text
     assert text.endswith("; and 3 more lines")
+    one = [r for r in records if r["line"] == 0]  # a single point: no plural
+    assert cut_notes(one, where_cut(one)[1]).startswith("1 point cut short, 0 not run; line 1")
 
 
 def test_each_line_gets_its_share_of_what_is_left(monkeypatch):

@@ -315,7 +315,8 @@ def cut_notes(records: Sequence[dict], notes: list[str]) -> str:
     """
     cut = [r for r in records if cut_by_budget(r)]
     not_run = sum(not r["ran"] for r in cut)
-    out = f"{len(cut) - not_run} points cut short, {not_run} not run; " + "; ".join(
+    short = len(cut) - not_run
+    out = f"{short} point{'s' if short != 1 else ''} cut short, {not_run} not run; " + "; ".join(
         notes[:LISTED_LINES]
     )
     more = len(notes) - LISTED_LINES
