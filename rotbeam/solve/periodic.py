@@ -20,6 +20,7 @@ import scipy.linalg as sla
 from ..model.base import DiscreteModel, Residual
 from ..model.modes import linear_forced_response
 from ..model.rows import matvec_rows
+from .krylov import gmres
 from .newton import newton
 from .spectral import fourier_diff_matrix, harmonic_tail, trig_interpolate
 
@@ -292,29 +293,27 @@ def _newton_step(col: Collocation, blocks, R: np.ndarray, linear: str, inv=None)
     if linear == "dense" or (linear == "auto" and size <= DENSE_MAX):
         J = col.dense_jacobian(blocks)
         return -sla.solve(J, R.ravel(), check_finite=False).reshape(shape), 0, None
-    from scipy.sparse.linalg import LinearOperator, gmres
-
-    def matvec(y: np.ndarray) -> np.ndarray:
-        return col.jacobian_times(blocks, y.reshape(shape)).ravel()
-
-    op = LinearOperator((size, size), matvec)
     inv = inv if inv is not None else col.averaged_inverse(blocks)
-    pre = LinearOperator((size, size), lambda r: inv(r.reshape(shape)).ravel())
-    count = [0]
-
-    def tick(_):
-        count[0] += 1
-
-    b = -R.ravel()
-    x, info = gmres(op, b, rtol=1e-4, atol=0.0, restart=60, maxiter=20, M=pre,
-                    callback=tick, callback_type="pr_norm")  # fmt: skip
-    if info != 0 or not np.all(np.isfinite(x)):
+    solved = gmres(
+        lambda y: col.jacobian_times(blocks, y.reshape(shape)).ravel(),
+        lambda r: inv(r.reshape(shape)).ravel(),
+        -R.ravel(),
+        rtol=1e-4,
+        restart=60,
+        maxiter=20,
+    )
+    x = solved.x
+    if not solved.converged or not np.all(np.isfinite(x)):
         if size <= 8 * DENSE_MAX:  # GMRES stalled: fall back to the exact dense solve
             J = col.dense_jacobian(blocks)
-            return -sla.solve(J, R.ravel(), check_finite=False).reshape(shape), count[0], None
+            return (
+                -sla.solve(J, R.ravel(), check_finite=False).reshape(shape),
+                solved.iterations,
+                None,
+            )
         if not np.all(np.isfinite(x)):
             raise np.linalg.LinAlgError("GMRES gave a non-finite step")
-    return x.reshape(shape), count[0], inv
+    return x.reshape(shape), solved.iterations, inv
 
 
 class _NewtonDirections:
