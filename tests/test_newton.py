@@ -69,6 +69,24 @@ def test_damped_steps_reach_a_root_the_full_steps_leave():
     assert abs(damped.x[0]) < 1e-12 and damped.norm < 1e-12
 
 
+def test_a_line_search_that_cannot_lower_the_residual_ends_newton():
+    """x^2 + 1 = 0 has no real root (|R| >= 1, least at x = 0, where the Jacobian vanishes):
+    from 0.5, 2 and -3 the damped steps soon reach a point where even a thousandth of the step
+    raises the residual, and Newton stops there ("line search failed") instead of spending the
+    200 steps it may take."""
+
+    def residual(x: np.ndarray) -> np.ndarray:
+        return x * x + 1.0
+
+    def direction(x: np.ndarray, r: np.ndarray) -> np.ndarray:
+        return -r / (2.0 * x)
+
+    for x0 in (0.5, 2.0, -3.0):
+        res = newton(residual, direction, np.array([x0]), 1e-12, 200)
+        assert not res.converged and res.message == "line search failed"
+        assert res.iterations <= 10 and res.norm >= 1.0
+
+
 def _quadratic_at_zero():
     """R(x) = x + x^2: root 0, x_{k+1} = x_k^2 / (1 + 2 x_k)."""
 
