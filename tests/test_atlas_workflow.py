@@ -51,6 +51,21 @@ def test_the_atlas_target_runs_a_job_per_line_and_equals_the_api(workflow_copy):
     pd.testing.assert_frame_equal(rows[keep], api.rows[keep], check_dtype=False)
 
 
+def test_line_seconds_is_each_line_jobs_budget(workflow_copy):
+    """`atlas.line_seconds` is the time budget of a line's job in place of numerics.max_seconds:
+    with 1 ms every point of both lines is left unanswered, its row saying so, and the gather
+    still writes the table and the figure."""
+    tiny = {"atlas": {**TINY["atlas"], "line_seconds": 1e-3}}
+    (workflow_copy / "config" / "tiny.yaml").write_text(yaml.safe_dump(tiny))
+    files = ("--configfile", "config/quick.yaml", "config/tiny.yaml")
+    p = snakemake(workflow_copy, "--cores", "2", "atlas", *files, timeout=600)
+    assert p.returncode == 0, p.stderr[-3000:]
+    rows = pd.read_csv(workflow_copy / OUT[0])
+    assert len(rows) == 6 and not rows["converged"].any()
+    assert rows["message"].str.contains("time budget of 0.001 s").all(), rows["message"].tolist()
+    assert (workflow_copy / OUT[1]).stat().st_size > 0
+
+
 def test_the_atlas_is_not_in_the_default_target(workflow_copy):
     jobs = dry_run_jobs(workflow_copy)
     assert jobs and not any(rule.startswith("atlas") for rule in jobs), jobs

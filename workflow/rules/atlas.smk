@@ -36,7 +36,7 @@ rule atlas_line:
         code=code_version("atlas_line"),
         beam=config["beam"],
         effects=config["effects"],
-        numerics=config["numerics"],
+        numerics=atlas_numerics(config["numerics"], ATLAS),
         atlas=ATLAS,
     script:
         "../scripts/atlas_line.py"

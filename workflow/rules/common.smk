@@ -259,3 +259,11 @@ def move_design_targets():
     out += [f"results/moves/design.{e}" for e in ("pdf", "png")]
     out += [f"results/moves/{d['name']}.csv" for d in MOVE_DESIGNS]
     return out
+
+
+def atlas_numerics(numerics, atlas):
+    """The numerics of a line's job: the config's, with the atlas's line_seconds (if set) as
+    its time budget."""
+    if "line_seconds" not in atlas:
+        return numerics
+    return {**numerics, "max_seconds": atlas["line_seconds"]}
