@@ -23,6 +23,7 @@ from test_bad_input import run_main
 from rotbeam.cli.options import flag_name
 from rotbeam.config.errors import RotbeamInputError
 from rotbeam.config.parameters import SECTIONS
+from rotbeam.config.scenefile import auto_tol
 from rotbeam.model.params import Beam, Drive, Effects
 from rotbeam.runs.scene import build_scene
 from rotbeam.solve.numerics import Numerics
@@ -88,12 +89,13 @@ def bad_value(draw, section: str, name: str):
 
 
 def _effects_word(text: str) -> bool:
-    """Whether --effects takes `text` as it is: a list of effects, 'all', 'none' or auto[:TOL]
-    (a bad value for one effect's switch can still be a good word for the flag)."""
-    if text.strip().startswith("auto"):
-        return True
+    """Whether --effects takes `text` as it is: a list of effects, 'all', 'none', auto or
+    auto:TOL (a bad value for one effect's switch can still be a good word for the flag)."""
     try:
-        Effects.from_list(text)
+        if text == "auto" or text.startswith("auto:"):
+            auto_tol(text, "argument --effects")
+        else:
+            Effects.from_list(text)
     except RotbeamInputError:
         return False
     return True

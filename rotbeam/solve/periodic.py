@@ -291,8 +291,7 @@ def _newton_step(col: Collocation, blocks, R: np.ndarray, linear: str, inv=None)
     shape = R.shape
     size = R.size
     if linear == "dense" or (linear == "auto" and size <= DENSE_MAX):
-        J = col.dense_jacobian(blocks)
-        return -sla.solve(J, R.ravel(), check_finite=False).reshape(shape), 0, None
+        return _dense_step(col, blocks, R), 0, None
     inv = inv if inv is not None else col.averaged_inverse(blocks)
     solved = gmres(
         lambda y: col.jacobian_times(blocks, y.reshape(shape)).ravel(),
@@ -305,15 +304,16 @@ def _newton_step(col: Collocation, blocks, R: np.ndarray, linear: str, inv=None)
     x = solved.x
     if not solved.converged or not np.all(np.isfinite(x)):
         if size <= 8 * DENSE_MAX:  # GMRES stalled: fall back to the exact dense solve
-            J = col.dense_jacobian(blocks)
-            return (
-                -sla.solve(J, R.ravel(), check_finite=False).reshape(shape),
-                solved.iterations,
-                None,
-            )
+            return _dense_step(col, blocks, R), solved.iterations, None
         if not np.all(np.isfinite(x)):
             raise np.linalg.LinAlgError("GMRES gave a non-finite step")
     return x.reshape(shape), solved.iterations, inv
+
+
+def _dense_step(col: Collocation, blocks, R: np.ndarray) -> np.ndarray:
+    """The exact Newton step -J^-1 R by LU of the dense block Jacobian, shaped as R."""
+    J = col.dense_jacobian(blocks)
+    return -sla.solve(J, R.ravel(), check_finite=False).reshape(R.shape)
 
 
 class _NewtonDirections:
