@@ -172,3 +172,55 @@ def test_stops_on_a_singular_jacobian_and_a_residual_outside_its_domain(damped):
     assert not res.converged and res.message == "residual not finite" and res.iterations == 0
     res = newton(np.sin, singular, np.array([0.0]), 1e-12, 5, damped=damped)
     assert res.converged and res.message == "exact" and res.iterations == 0
+
+
+def _chord_system(c: float, slope: float):
+    """exp(x) = c with the fixed derivative `slope` (a chord): each step contracts the error by
+    the closed-form factor |1 - c / slope| near the root log(c)."""
+
+    def residual(x: np.ndarray) -> np.ndarray:
+        return np.exp(x) - c
+
+    def direction(x: np.ndarray, r: np.ndarray) -> np.ndarray:
+        return -r / slope
+
+    return residual, direction
+
+
+@pytest.mark.parametrize("rtol", [1e-4, 1e-6, 1e-8, 1e-10, 1e-12])
+def test_the_contraction_test_stops_within_rtol_of_the_root(rtol):
+    """exp(x) = 2 from x = 0 by Newton: with `contraction` Newton stops no later than the step
+    test, at an iterate within rtol of the closed-form root log 2."""
+    residual, direction = _exp_system(2.0)
+    root = math.log(2.0)
+    plain = newton(residual, direction, np.zeros(1), rtol, 30)
+    quick = newton(residual, direction, np.zeros(1), rtol, 30, contraction=True)
+    assert plain.converged and quick.converged
+    assert quick.iterations <= plain.iterations
+    assert abs(float(quick.x[0]) - root) <= rtol * root, (quick.iterations, quick.x[0] - root)
+
+
+def test_the_contraction_test_saves_steps_of_a_linear_convergence_and_keeps_rtol():
+    """A chord (fixed slope 2.5 for exp(x) = 2: contraction 0.2 a step, above CONTRACTION_MAX)
+    is stopped by the step test alone; with slopes 2.1 and 2.01 (contractions 0.048 and 0.005,
+    as an inexact Newton step's) the contraction test stops it sooner, and the error of its
+    iterate, against log 2, is within rtol in all three."""
+    from rotbeam.solve.newton import CONTRACTION_MAX
+
+    root, rtol = math.log(2.0), 1e-9
+    for slope, predicted in ((2.5, False), (2.1, True), (2.01, True)):
+        assert (abs(1 - 2.0 / slope) < CONTRACTION_MAX) == predicted
+        residual, direction = _chord_system(2.0, slope)
+        plain = newton(residual, direction, np.zeros(1), rtol, 200, damped=False)
+        quick = newton(residual, direction, np.zeros(1), rtol, 200, damped=False, contraction=True)
+        assert plain.converged and quick.converged
+        assert ("contraction" in quick.message) == predicted, quick.message
+        assert quick.iterations < plain.iterations if predicted else quick.x[0] == plain.x[0]
+        assert abs(float(quick.x[0]) - root) <= rtol * root, (slope, quick.x[0] - root)
+
+
+def test_the_contraction_test_is_refused_for_a_batch():
+    """A batch of systems has one contraction a row: `contraction` with an axis is refused."""
+    residual, direction = _exp_system(2.0)
+    with pytest.raises(ValueError, match="contraction"):
+        newton(residual, direction, np.zeros((2, 3)), 1e-9, 10, axis=-1, contraction=True)

@@ -20,6 +20,10 @@ from .timebudget import check_deadline
 #: 198 failed solves took one and went on to fail, 3851 of their 5746 steps after it)
 MIN_STEP_FRACTION = 1e-3
 
+#: the contraction test (`newton`'s `contraction`) trusts the ratio of two steps below this
+#: (a contraction by 10 or more a step: Newton in its quadratic or its inexact-linear range)
+CONTRACTION_MAX = 0.1
+
 #: the default floor of max |x| in the relative step test (a pure relative test)
 TINY_SCALE = 1e-300
 
@@ -174,9 +178,10 @@ def newton(
     floor: float = TINY_SCALE,
     weights: np.ndarray | None = None,
     axis: int | None = None,
+    contraction: bool = False,
 ) -> NewtonResult:
     """Newton's method: steps from `direction`, damped by `line_search` or taken whole, until the
-    step taken passes `step_converged`.
+    step taken passes `step_converged` (or, with `contraction`, the step it predicts next).
 
     Parameters
     ----------
@@ -200,6 +205,13 @@ def newton(
         The weights of a weighted step test, max |weights step| <= rtol; None: the relative test.
     axis : int or None
         The step test per slice along this axis (a batch of independent systems); None: one.
+    contraction : bool
+        Also stop where the next step, predicted from the contraction of the last two, passes
+        the test: after two whole steps that lowered the residual, theta = max |step| over the
+        step before's, and the iterate's error is estimated as theta / (1 - theta) times the
+        step taken (Hairer and Wanner, Solving ODEs II, IV.8), for theta < CONTRACTION_MAX.
+        This saves the last step, which only confirms an iterate already within rtol (one of
+        the three steps from a sweep's neighbouring orbit).  Only with axis None.
 
     Returns
     -------
@@ -224,6 +236,9 @@ def newton(
         return NewtonResult(x, r, norm, True, 0, "exact")
     if not np.isfinite(norm):
         return NewtonResult(x, r, norm, False, 0, "residual not finite")
+    if contraction and axis is not None:
+        raise ValueError("newton: the contraction test is for one system (axis None)")
+    last = None  # max |step| of the last whole step that lowered the residual
     for it in range(1, maxiter + 1):
         check_deadline()
         try:
@@ -240,4 +255,11 @@ def newton(
             return NewtonResult(x, r, norm, True, it, f"converged in {it} iterations")
         if t < MIN_STEP_FRACTION and not norm < before:
             return NewtonResult(x, r, norm, False, it, "line search failed")
+        size = float(np.max(np.abs(step))) if contraction and t == 1.0 and norm < before else None
+        if size is not None and last is not None and size < CONTRACTION_MAX * last:
+            theta = size / last
+            if step_converged(theta / (1.0 - theta) * step, x, rtol, floor, weights):
+                why = f"converged in {it} iterations (contraction {theta:.1e})"
+                return NewtonResult(x, r, norm, True, it, why)
+        last = size
     return NewtonResult(x, r, norm, False, maxiter, "no convergence")

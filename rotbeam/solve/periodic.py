@@ -401,7 +401,7 @@ def solve_periodic(
     col = Collocation(model, M)
     X = linear_guess(model, col.tau) if guess is None else np.array(guess, dtype=float)
     directions = _NewtonDirections(col, linear)
-    res = newton(col.residual, directions, X, rtol, maxiter)
+    res = newton(col.residual, directions, X, rtol, maxiter, contraction=True)
     message = "singular collocation Jacobian" if res.message == "singular Jacobian" else res.message
     return PeriodicResult(
         tau=col.tau,
