@@ -529,3 +529,79 @@ def test_resonant_beam_multipliers_against_a_time_stepped_variational_equation()
     assert fl.steps > FIRST_STEPS
     assert abs(fl.max_abs - np.max(np.abs(np.linalg.eigvals(Phi)))) < 1e-6
     assert np.max(np.abs(fl.monodromy - Phi)) < 1e-4 * np.max(np.abs(Phi))
+
+
+def _rotations(radius: float, angles: np.ndarray) -> np.ndarray:
+    """Block-diagonal 2 x 2 rotations by `angles`, scaled by `radius`: every eigenvalue has
+    modulus `radius` (radius e^(+-i angle))."""
+    R = np.zeros((2 * angles.size, 2 * angles.size))
+    for k, a in enumerate(angles):
+        R[2 * k : 2 * k + 2, 2 * k : 2 * k + 2] = radius * np.array(
+            [[math.cos(a), -math.sin(a)], [math.sin(a), math.cos(a)]]
+        )
+    return R
+
+
+def test_spectral_radius_against_closed_forms():
+    """`spectral_radius` (Gelfand's formula by repeated squaring) against matrices whose
+    spectral radius is known: equal moduli with no dominant eigenvalue (39 rotations scaled by
+    0.93, made non-normal by a basis of condition 1e4, as a calm orbit's monodromy), a Jordan
+    block (0.9, size 6: ||J^k|| grows as k^5 0.9^k, the formula's bias in closed form), a
+    dominant negative real eigenvalue, a
+    nilpotent matrix (0), a large and a tiny scale (no overflow or underflow).  Within 1e-8:
+    the rounding of the first squarings sets a floor (4e-9 on the first matrix, where its
+    eigenvalues are 3e-11 off), far below the 1e-5 to which the checks compare two counts."""
+    from rotbeam.solve.floquet import RADIUS_SQUARINGS, spectral_radius
+
+    rng = np.random.default_rng(7)
+    U, _ = np.linalg.qr(rng.standard_normal((78, 78)))
+    V = U @ np.diag(np.logspace(0, 4, 78)) @ U.T  # condition 1e4
+    calm = V @ _rotations(0.93, rng.uniform(0, math.pi, 39)) @ np.linalg.inv(V)
+    assert abs(spectral_radius(calm) - 0.93) <= 1e-8
+    # a Jordan block: ||J^k||_max = C(k, 5) 0.9^(k - 5) (its corner), so the formula at
+    # k = 2^RADIUS_SQUARINGS lies above 0.9 by the closed-form factor (C(k, 5) / 0.9^5)^(1/k)
+    jordan = 0.9 * np.eye(6) + np.diag(np.ones(5), 1)
+    k = 2.0**RADIUS_SQUARINGS
+    log_corner = sum(math.log(k - i) for i in range(5)) - math.log(120) - 5 * math.log(0.9)
+    assert abs(spectral_radius(jordan) - 0.9 * math.exp(log_corner / k)) <= 1e-10
+    assert 0.0 < spectral_radius(jordan) - 0.9 <= 3e-8
+    d = np.concatenate([[-0.95], rng.uniform(-0.9, 0.9, 20)])
+    W = rng.standard_normal((21, 21))
+    assert abs(spectral_radius(W @ np.diag(d) @ np.linalg.inv(W)) - 0.95) <= 1e-8
+    assert spectral_radius(np.triu(rng.standard_normal((8, 8)), 1)) == 0.0
+    assert spectral_radius(np.zeros((3, 3))) == 0.0
+    for scale in (1e150, 1e-150):
+        assert abs(spectral_radius(scale * calm) / scale - 0.93) <= 1e-8
+    with pytest.raises(np.linalg.LinAlgError, match="not finite"):
+        spectral_radius(np.array([[1.0, np.nan], [0.0, 1.0]]))
+
+
+@pytest.mark.parametrize("omega0, f_d", [(100.0, 5.0), (5.0, 7.0)])
+def test_spectral_radius_of_beam_monodromies_against_their_eigenvalues(omega0, f_d):
+    """On the beam's monodromies (N = 12; a calm orbit, whose multipliers all share one modulus,
+    and the resonant one) the spectral radius is the largest |eigenvalue| to 1e-8 (measured
+    1.4e-9: the rounding floor of the closed-form test above)."""
+    from rotbeam.solve.floquet import spectral_radius
+
+    dl, model, res = _beam_orbit(omega0, f_d)
+    for steps in (12, 37):
+        Phi = beam_floquet(model, res.theta, res.theta_t, steps=steps).monodromy
+        mu = np.abs(np.linalg.eigvals(Phi)).max()
+        assert abs(spectral_radius(Phi) - mu) <= 1e-8 * mu
+
+
+def test_the_ladder_reports_the_multipliers_of_the_count_it_keeps():
+    """The products that only check another carry their spectral radius alone; the one the
+    ladder keeps (5 rad/s, 7 Hz) and a kept first try (100 rad/s, 5 Hz) carry all their
+    multipliers, the eigenvalues of their monodromy, with max_abs the leading one's modulus."""
+    for omega0, f_d in ((5.0, 7.0), (100.0, 5.0)):
+        dl, model, res = _beam_orbit(omega0, f_d)
+        fl = beam_floquet(model, res.theta, res.theta_t)
+        mu = np.linalg.eigvals(fl.monodromy)
+        assert fl.radius is None and fl.multipliers.size == mu.size
+        np.testing.assert_allclose(np.sort(np.abs(fl.multipliers)), np.sort(np.abs(mu)),
+                                   rtol=1e-12, atol=0)  # fmt: skip
+        assert fl.max_abs == pytest.approx(abs(fl.multipliers[0]), rel=1e-15)
+        assert fl.coarse is not None and fl.coarse.radius is not None
+        assert fl.coarse.multipliers.size == 0
+        assert abs(fl.coarse.max_abs - np.abs(np.linalg.eigvals(fl.coarse.monodromy)).max()) <= 1e-8

@@ -80,6 +80,10 @@ class FloquetResult:
     #: third step's exponential cubed) for a first try, the count of STEP_LADDER before it
     #: after that; their distance estimates the error.  None when the steps were fixed
     coarse: FloquetResult | None = None
+    #: max |mu| as `spectral_radius` gives it, for a product that only checks another: its
+    #: multipliers are then not computed (empty), and only `max_abs`, `spread` and the offset
+    #: are asked of it
+    radius: float | None = None
     #: (w,) once `fixed_point_offset` has solved for it: the acceptance of a first try and the
     #: certificate both ask
     _offset: tuple = field(default=(), init=False, repr=False, compare=False)
@@ -110,7 +114,10 @@ class FloquetResult:
 
     @property
     def max_abs(self) -> float:
-        """The largest |mu| (0 without multipliers)."""
+        """The largest |mu|: the leading multiplier's modulus, or `radius` for a product that
+        only checks another (0 without either)."""
+        if self.radius is not None:
+            return self.radius
         return float(np.abs(self.multipliers[0])) if self.multipliers.size else 0.0
 
     @property
@@ -198,6 +205,97 @@ def _coarse_product(
     new exponential).  E starts at a step whose index is a multiple of 3."""
     E3 = E[1::3]
     return _product(E3 @ E3 @ E3, start)
+
+
+#: squarings behind `spectral_radius`: ||Phi^k||^(1/k) at k = 2^32 is above |mu|max by at most
+#: log(kappa n) / k (kappa the condition of Phi's eigenvector basis, 2.6e5 at N = 40: 4e-9);
+#: the rounding of the first squarings leaves it within about 1e-8 (tests/test_floquet.py)
+RADIUS_SQUARINGS = 32
+
+
+def spectral_radius(Phi: np.ndarray) -> float:
+    """max |mu| of a square matrix without its eigenvalues: ||Phi^k||^(1/k) at k = 2^32, by
+    repeated squaring rescaled at each step (Gelfand's formula).
+
+    The largest |mu| is all a product that only checks another needs (`first_try_stands`),
+    and at 78 x 78 this costs a third of an eigenvalue solve.  It needs no gap between the
+    moduli (at a calm orbit all 78 multipliers share one, exp(-eta P / 2): docs/stability.md),
+    only that log of the eigenvector basis's condition be small against 2^32.  It is accurate to
+    about 1e-8 (the rounding of the first squarings), against 1e-11 for the eigenvalues: enough
+    for a check at SPREAD_TOL, not for a reported |mu|max.
+
+    Parameters
+    ----------
+    Phi : numpy.ndarray
+        The matrix, shape (dim, dim), finite.
+
+    Returns
+    -------
+    float
+        Its spectral radius (0 for a nilpotent matrix).
+
+    Raises
+    ------
+    numpy.linalg.LinAlgError
+        For a matrix with an entry that is not finite (as `numpy.linalg.eigvals`).
+    """
+    X = np.array(Phi, dtype=float)
+    if not np.all(np.isfinite(X)):
+        raise np.linalg.LinAlgError("spectral_radius: the matrix has an entry that is not finite")
+    log_radius, weight = 0.0, 1.0  # X = Phi^(2^j) / (the scales so far), log weighted by 2^-j
+    for _ in range(RADIUS_SQUARINGS):
+        scale = float(np.max(np.abs(X)))
+        if scale == 0.0:
+            return 0.0
+        log_radius += weight * math.log(scale)
+        X *= 1.0 / scale
+        X = X @ X
+        weight *= 0.5
+    scale = float(np.max(np.abs(X)))
+    return 0.0 if scale == 0.0 else math.exp(log_radius + weight * math.log(scale))
+
+
+def radius_of(Phi: np.ndarray, steps: int, defect: np.ndarray | None = None) -> FloquetResult:
+    """A product that only checks another: its largest |mu| by `spectral_radius`, no
+    multipliers (`with_multipliers` adds them where it is kept after all).
+
+    Parameters
+    ----------
+    Phi : numpy.ndarray
+        The monodromy, shape (dim, dim).
+    steps : int
+        Magnus steps it was built from.
+    defect : numpy.ndarray or None
+        The orbit's one-period defect, shape (dim,), if measured.
+
+    Returns
+    -------
+    FloquetResult
+        Phi, `radius` set, empty multipliers.
+    """
+    return FloquetResult(np.zeros(0, dtype=complex), Phi, steps, 0.0, defect=defect,
+                         radius=spectral_radius(Phi))  # fmt: skip
+
+
+def with_multipliers(fl: FloquetResult) -> FloquetResult:
+    """`fl` with its multipliers computed (itself where they are): a ladder's product that
+    stands after all.
+
+    Parameters
+    ----------
+    fl : FloquetResult
+        A product, perhaps made by `radius_of`.
+
+    Returns
+    -------
+    FloquetResult
+        The same product, its coarse product and offset kept, with its multipliers.
+    """
+    if fl.radius is None:
+        return fl
+    out = multipliers_of(fl.monodromy, fl.steps, fl.seconds, fl.defect)
+    out.coarse, out._offset = fl.coarse, fl._offset
+    return out
 
 
 def multipliers_of(
@@ -404,26 +502,30 @@ def orbit_floquet(
     if previous is None:
         resolved = Z.shape[0] <= FIRST_TRY_MAX_INSTANTS
         Phi, defect, low = _monodromy(jac, Z, period, FIRST_STEPS, rhs, rows, coarse=resolved)
-        previous = multipliers_of(Phi, FIRST_STEPS, 0.0, defect)
-        if resolved:
-            previous.coarse = multipliers_of(low[0], FIRST_STEPS // 3, 0.0, low[1])
+        if resolved:  # the first try may stand: its multipliers, and its check's radius
+            previous = multipliers_of(Phi, FIRST_STEPS, 0.0, defect)
+            previous.coarse = radius_of(low[0], FIRST_STEPS // 3, low[1])
             if first_try_stands(previous, size, offset_atol, mu_tol):
                 previous.seconds = time.perf_counter() - t0
                 return previous
+        else:  # only the ladder's first check
+            previous = radius_of(Phi, FIRST_STEPS, defect)
     for count in (S for S in STEP_LADDER if S > previous.steps):
         Phi, defect, _ = _monodromy(jac, Z, period, count, rhs, rows, coarse=False)
-        current = multipliers_of(Phi, count, 0.0, defect)
+        current = radius_of(Phi, count, defect)
         current.coarse = _alone(previous)
         previous = current
         if first_try_stands(current, size, offset_atol, mu_tol):
             break
+    previous = with_multipliers(previous)
     previous.seconds = time.perf_counter() - t0
     return previous
 
 
 def _alone(fl: FloquetResult) -> FloquetResult:
     """`fl` without the product it was checked against (a ladder keeps one comparison)."""
-    out = FloquetResult(fl.multipliers, fl.monodromy, fl.steps, fl.seconds, fl.method, fl.defect)
+    out = FloquetResult(fl.multipliers, fl.monodromy, fl.steps, fl.seconds, fl.method, fl.defect,
+                        radius=fl.radius)  # fmt: skip
     out._offset = fl._offset
     return out
 
