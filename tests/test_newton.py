@@ -224,3 +224,20 @@ def test_the_contraction_test_is_refused_for_a_batch():
     residual, direction = _exp_system(2.0)
     with pytest.raises(ValueError, match="contraction"):
         newton(residual, direction, np.zeros((2, 3)), 1e-9, 10, axis=-1, contraction=True)
+
+
+def test_the_contraction_test_is_not_fooled_by_a_stalled_direction():
+    """A direction that stalls after its first step (each later step 1e-7 of Newton's, as a
+    GMRES far short of its tolerance gives): the steps shrink by 1e-8 while the residual does
+    not fall, so the contraction test must not call the iterate, still 0.04 off log 2,
+    converged; Newton runs out of steps instead."""
+    residual, exact = _exp_system(2.0)
+    calls = []
+
+    def stalled(x: np.ndarray, r: np.ndarray) -> np.ndarray:
+        calls.append(1)
+        return exact(x, r) * (1.0 if len(calls) == 1 else 1e-7)
+
+    res = newton(residual, stalled, np.zeros(1), 1e-12, 8, damped=False, contraction=True)
+    assert not res.converged and res.message == "no convergence", res.message
+    assert abs(float(res.x[0]) - math.log(2.0)) > 1e-2

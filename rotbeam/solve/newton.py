@@ -20,8 +20,9 @@ from .timebudget import check_deadline
 #: 198 failed solves took one and went on to fail, 3851 of their 5746 steps after it)
 MIN_STEP_FRACTION = 1e-3
 
-#: the contraction test (`newton`'s `contraction`) trusts the ratio of two steps below this
-#: (a contraction by 10 or more a step: Newton in its quadratic or its inexact-linear range)
+#: the contraction test (`newton`'s `contraction`) trusts the ratio of two steps below this, of
+#: steps that each cut the residual by as much (a contraction by 10 or more a step: Newton in
+#: its quadratic or its inexact-linear range, not a direction that stalls)
 CONTRACTION_MAX = 0.1
 
 #: the default floor of max |x| in the relative step test (a pure relative test)
@@ -207,11 +208,12 @@ def newton(
         The step test per slice along this axis (a batch of independent systems); None: one.
     contraction : bool
         Also stop where the next step, predicted from the contraction of the last two, passes
-        the test: after two whole steps that lowered the residual, theta = max |step| over the
-        step before's, and the iterate's error is estimated as theta / (1 - theta) times the
-        step taken (Hairer and Wanner, Solving ODEs II, IV.8), for theta < CONTRACTION_MAX.
-        This saves the last step, which only confirms an iterate already within rtol (one of
-        the three steps from a sweep's neighbouring orbit).  Only with axis None.
+        the test: after two whole steps that each cut the residual by CONTRACTION_MAX or more,
+        theta = max |step| over the step before's, and the iterate's error is estimated as theta
+        / (1 - theta) times the step taken (Hairer and Wanner, Solving ODEs II, IV.8), for theta
+        < CONTRACTION_MAX. This saves the last step, which only confirms an iterate already
+        within rtol (one of the three steps from a sweep's neighbouring orbit). Only with axis
+        None.
 
     Returns
     -------
@@ -255,7 +257,10 @@ def newton(
             return NewtonResult(x, r, norm, True, it, f"converged in {it} iterations")
         if t < MIN_STEP_FRACTION and not norm < before:
             return NewtonResult(x, r, norm, False, it, "line search failed")
-        size = float(np.max(np.abs(step))) if contraction and t == 1.0 and norm < before else None
+        # a whole step that cut the residual tenfold (not one of a direction that stalled,
+        # e.g. GMRES short of its tolerance, whose steps shrink while the residual does not)
+        whole = contraction and t == 1.0 and norm < CONTRACTION_MAX * before
+        size = float(np.max(np.abs(step))) if whole else None
         if size is not None and last is not None and size < CONTRACTION_MAX * last:
             theta = size / last
             if step_converged(theta / (1.0 - theta) * step, x, rtol, floor, weights):
