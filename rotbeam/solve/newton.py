@@ -208,18 +208,19 @@ def newton(
         The step test per slice along this axis (a batch of independent systems); None: one.
     contraction : bool
         Also stop where the next step, predicted from the contraction of the last two, passes
-        the test: after two whole steps that each cut the residual by CONTRACTION_MAX or more,
-        theta = max |step| over the step before's, and the iterate's error is estimated as theta
-        / (1 - theta) times the step taken (Hairer and Wanner, Solving ODEs II, IV.8), for theta
-        < CONTRACTION_MAX. This saves the last step, which only confirms an iterate already
-        within rtol (one of the three steps from a sweep's neighbouring orbit). Only with axis
-        None.
+        the test: after two whole steps that each cut the residual to CONTRACTION_MAX of what it
+        was or less, theta = max |step| over the step before's, and the iterate's error is
+        estimated as theta / (1 - theta) times the step taken (Hairer and Wanner, Solving ODEs
+        II, IV.8), for theta < CONTRACTION_MAX. This saves the last step, which only confirms an
+        iterate already within rtol (one of the three steps from a sweep's neighbouring orbit).
+        Only with axis None.
 
     Returns
     -------
     NewtonResult
         The last iterate, its residual, whether the step test passed and why it stopped: the
-        message is "exact" (a zero residual at the start), "converged in k iterations",
+        message is "exact" (a zero residual at the start), "converged in k iterations" (with
+        "(contraction theta)" where the contraction test stopped it),
         "residual not finite" (at the start or after a step), "iterate not finite", "singular
         Jacobian" (`direction` raised), "line search failed" (a damped step shortened to
         MIN_STEP_FRACTION that still raised the residual, short of the step test: Newton has
