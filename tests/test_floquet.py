@@ -547,8 +547,8 @@ def test_spectral_radius_against_closed_forms():
     spectral radius is known: equal moduli with no dominant eigenvalue (39 rotations scaled by
     0.93, made non-normal by a basis of condition 1e4, as a calm orbit's monodromy), a Jordan
     block (0.9, size 6: ||J^k|| grows as k^5 0.9^k, the formula's bias in closed form), a
-    dominant negative real eigenvalue, a
-    nilpotent matrix (0), a large and a tiny scale (no overflow or underflow).  Within 1e-8:
+    dominant negative real eigenvalue, a nilpotent matrix (0), a large and a tiny scale (no
+    overflow or underflow).  Within 1e-8:
     the rounding of the first squarings sets a floor (4e-9 on the first matrix, where its
     eigenvalues are 3e-11 off), far below the 1e-5 to which the checks compare two counts."""
     from rotbeam.solve.floquet import RADIUS_SQUARINGS, spectral_radius

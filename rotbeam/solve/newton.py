@@ -241,7 +241,7 @@ def newton(
         return NewtonResult(x, r, norm, False, 0, "residual not finite")
     if contraction and axis is not None:
         raise ValueError("newton: the contraction test is for one system (axis None)")
-    last = None  # max |step| of the last whole step that lowered the residual
+    last = None  # max |step| of the last whole step that cut the residual tenfold
     for it in range(1, maxiter + 1):
         check_deadline()
         try:
