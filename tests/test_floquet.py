@@ -19,12 +19,10 @@ from rotbeam.solve.continuation import FirstOrderProblem, continue_branch
 from rotbeam.solve.floquet import (
     FIRST_STEPS,
     FIRST_TRY_MAX_INSTANTS,
-    SECOND_STEPS,
     SPREAD_TOL,
     STEP_LADDER,
     FloquetResult,
     beam_floquet,
-    first_try_stands,
     orbit_floquet,
 )
 from rotbeam.solve.numerics import Numerics
@@ -329,54 +327,6 @@ def test_a_resonant_step_count_is_not_taken_on_trust():
     assert abs(fl.max_abs - converged.max_abs) <= SPREAD_TOL
 
 
-@pytest.mark.parametrize("f_d", [5 + 25 * 17 / 39, 5 + 25 * 19 / 39])
-def test_a_close_count_checks_a_first_try_whose_coarse_product_aliases(f_d):
-    """Calm orbits (100 rad/s, 15.9 and 17.2 Hz, N = 40, M = 17) whose first try's 4-step cube
-    aliases a bending mode: |mu|max of 12 and 4 steps differ by 3.9e-3 and 2.5e-4, where 12
-    steps are within 2e-6 of the rule converged in the step count (1000 steps).  Where only
-    |mu|max is compared (the reported multipliers), the first try is checked against its
-    close count, 13 steps, the spread scaled to that count's error, and the product kept is
-    within 1e-6 of the converged one (measured 4.3e-9 and 3.2e-7) and within its spread;
-    where the offsets are compared, or an ambiguous certificate asks for more (close=False),
-    the ladder goes on at once."""
-    dl = Dimensionless.from_physical(Beam(), Drive(omega0=100.0, f_d=f_d), Effects())
-    model = DiscreteElastica(dl, 40)
-    res = solve_periodic_adaptive(model, tail_tol=1e-3)
-    assert res.converged and res.M <= FIRST_TRY_MAX_INSTANTS
-    mu = {S: beam_floquet(model, res.theta, res.theta_t, steps=S).max_abs for S in (4, 12, 1000)}
-    assert abs(mu[12] - mu[4]) > 10 * SPREAD_TOL  # the trap: the cube is far off
-    fl = beam_floquet(model, res.theta, res.theta_t, offset_atol=math.inf)
-    assert fl.steps == SECOND_STEPS and fl.coarse.steps == FIRST_STEPS
-    assert fl.spread <= SPREAD_TOL
-    assert abs(fl.max_abs - mu[1000]) <= 1e-6
-    assert abs(fl.max_abs - mu[1000]) <= fl.spread + 1e-8  # the reference's own error, ~1e-9
-    for ladder in (beam_floquet(model, res.theta, res.theta_t),
-                   beam_floquet(model, res.theta, res.theta_t, offset_atol=math.inf,
-                                close=False)):  # fmt: skip
-        assert ladder.steps in STEP_LADDER[1:]
-
-
-def test_the_spread_of_two_close_counts_is_scaled_to_the_finer_ones_error():
-    """The rotating-frame system (closed form, second-order errors): for counts S_c, S = 24
-    and 25, 48 and 49, 96 and 97 the |mu|max gap times S_c^2 / (S^2 - S_c^2) (11.8, 24.0,
-    47.8) estimates the error of S from above, within 25 % (measured 14 %, 4 %, 1 %); the
-    gap alone is a twelfth to a fiftieth of it.  Counts at least sqrt 2 apart keep the gap
-    as it is (scale 1)."""
-    jac, rhs, P, Phi, _ = _rotating_frame_system()
-    Z = np.zeros((5, 4))
-    exact = float(np.max(np.abs(np.linalg.eigvals(Phi))))
-    for S_c in (24, 48, 96):
-        fl = orbit_floquet(jac, Z, P, steps=S_c + 1, rhs=rhs)
-        fl.coarse = orbit_floquet(jac, Z, P, steps=S_c, rhs=rhs)
-        err = abs(fl.max_abs - exact)
-        assert fl.error_scale == pytest.approx(S_c**2 / ((S_c + 1) ** 2 - S_c**2), rel=1e-15)
-        assert err <= fl.spread <= 1.25 * err
-    for S_c, S in ((4, 12), (12, 37), (12, 17)):
-        fl = FloquetResult(np.ones(1), np.eye(1), S, 0.0)
-        fl.coarse = FloquetResult(np.ones(1), np.eye(1), S_c, 0.0)
-        assert fl.error_scale == 1.0
-
-
 def test_a_first_try_on_an_unresolved_orbit_does_not_stand():
     """An orbit on more instants than FIRST_TRY_MAX_INSTANTS has harmonics that 12 midpoints
     alias: at N = 16, 36.67 rad/s, 13.7 Hz (M = 129, the tip swinging about 1 rad) 12 steps and
@@ -442,25 +392,6 @@ def test_certificate_adds_the_coarse_spread(limit, certified, ambiguous):
     assert cert.offset == pytest.approx(2e-6, rel=1e-12)
     assert cert.spread == pytest.approx(1e-6, rel=1e-12)
     assert (cert.certified, cert.ambiguous) == (certified, ambiguous)
-
-
-def test_certificate_scales_the_spread_of_a_close_count():
-    """A product of 13 steps (the close count) checked against the first try: the offsets' gap
-    (1e-6) is scaled to the finer count's error, 144 / 25 of it."""
-    fl = _synthetic([1e-6, 0, 0, 0], [1.5e-6, 0, 0, 0])
-    fl.steps, fl.coarse.steps = SECOND_STEPS, FIRST_STEPS
-    cert = monodromy_certificate(fl, np.ones((2, 3)), 1.0, 1.0)
-    assert cert.spread == pytest.approx(1e-6 * 144 / 25, rel=1e-12)
-
-
-@pytest.mark.parametrize("steps, stands", [(37, True), (SECOND_STEPS, False)])
-def test_a_close_counts_offsets_are_compared_at_its_error(steps, stands):
-    """Offsets 2e-6 and 2.01e-6 (Phi = I / 2), allowed 1 % of the offset plus 1e-8 (3e-8):
-    their gap (1e-8) stands for a count three times the first try's, not for 13 steps,
-    whose error it gives 144 / 25 times (5.8e-8)."""
-    fl = _synthetic([1e-6, 0, 0, 0], [1.005e-6, 0, 0, 0])
-    fl.steps, fl.coarse.steps = steps, FIRST_STEPS
-    assert first_try_stands(fl, 1.0) == stands
 
 
 def test_ambiguous_certificate_is_decided_with_more_steps(monkeypatch):

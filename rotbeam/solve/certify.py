@@ -128,8 +128,7 @@ def orbit_stability(
         A fixed number of Magnus steps; None: the first try, then the ladder
         (`rotbeam.solve.floquet.orbit_floquet`).
     after : FloquetResult or None
-        A pass of the same orbit already made, for the ladder to go on from: its own counts,
-        without the close check of a first try (what an ambiguous certificate asks for).
+        A pass of the same orbit already made, for the ladder to go on from.
     candidate : bool
         Whether the orbit is only a candidate yet: the step count then answers for the
         stability verdict alone (|mu|max to a tenth of its distance from 1), and the
@@ -146,7 +145,7 @@ def orbit_stability(
         return None
     loose = math.inf if candidate else None
     return beam_floquet(model, periodic.theta, periodic.theta_t, steps, after, loose,
-                        math.inf if candidate else SPREAD_TOL, close=after is None)  # fmt: skip
+                        math.inf if candidate else SPREAD_TOL)  # fmt: skip
 
 
 def reported_multipliers(
@@ -310,8 +309,7 @@ def monodromy_certificate(
     w_coarse = fl.coarse.fixed_point_offset() if fl.coarse is not None else None
     spread = 0.0
     if w_coarse is not None:
-        gap = _relative(w - w_coarse, size, wref) if np.all(np.isfinite(w_coarse)) else np.inf
-        spread = gap * fl.error_scale
+        spread = _relative(w - w_coarse, size, wref) if np.all(np.isfinite(w_coarse)) else np.inf
     limit = ss_tol / CERTIFICATE_SAFETY
     return Certificate(offset, limit, offset + spread <= limit, spread)
 

@@ -6,8 +6,7 @@ trigonometric interpolant; its eigenvalues are the multipliers, and max |mu| < 1
 attracts.  The same pass propagates the interpolant's residual: the one-period defect behind the
 certificate of `rotbeam.solve.certify`.  A first try of FIRST_STEPS steps stands when a coarse
 product from the same exponentials agrees with it; otherwise the step counts of STEP_LADDER are
-taken in turn (where only |mu|max is compared, after SECOND_STEPS), each checked against the one
-before, until one stands.  Definitions, derivation,
+taken in turn, each checked against the one before, until one stands.  Definitions, derivation,
 step counts and checks: docs/stability.md, "How the multipliers are computed" and "The
 monodromy certificate".
 """
@@ -48,14 +47,6 @@ FIRST_TRY_MAX_INSTANTS = 2 * FIRST_STEPS - 1
 #: of the orbit, a count's aliases are those of its divisors too, and two coprime counts share
 #: none below their product (docs/stability.md, "How the multipliers are computed")
 STEP_LADDER = (FIRST_STEPS, 37, 112, 337, 1012)
-
-#: the count a resolved orbit's first try is checked against when its coarse product does not
-#: agree with it (the 4-step product aliases a bending mode far more often than 12 steps do):
-#: coprime to FIRST_STEPS and about as costly, its spread scaled to its own error
-#: (`FloquetResult.error_scale`); the ladder goes on from it where the two do not agree.  The
-#: ladder's own counts get no close count: nearer resonance, where they are taken, two close
-#: counts differ by more than the rule's second-order error (docs/stability.md)
-SECOND_STEPS = FIRST_STEPS + 1
 
 #: a product stands when its |mu|max and the one it is checked against differ by at most this
 #: (the registry's numerics.floquet_tol, what a reported |mu|max carries by default) ...
@@ -98,24 +89,9 @@ class FloquetResult:
     _offset: tuple = field(default=(), init=False, repr=False, compare=False)
 
     @property
-    def error_scale(self) -> float:
-        """What the distance to the coarse product is multiplied by to estimate this product's
-        error: 1 where this count is at least sqrt 2 times the coarse one's (it then at least
-        halves the rule's second-order error, and the distance bounds the larger error), else
-        S_c^2 / (S^2 - S_c^2), this count's share of the distance under a second-order error
-        (5.76 for 13 steps against 12).  1 without a coarse product."""
-        if self.coarse is None:
-            return 1.0
-        S, S_c = self.steps, self.coarse.steps
-        return max(1.0, S_c**2 / (S**2 - S_c**2))
-
-    @property
     def spread(self) -> float:
-        """| |mu|max - coarse |mu|max | times `error_scale`: an estimate of this product's
-        error (0 without a coarse product)."""
-        if self.coarse is None:
-            return 0.0
-        return abs(self.max_abs - self.coarse.max_abs) * self.error_scale
+        """| |mu|max - coarse |mu|max |: an error estimate (0 without a coarse product)."""
+        return abs(self.max_abs - self.coarse.max_abs) if self.coarse is not None else 0.0
 
     def fixed_point_offset(self) -> np.ndarray | None:
         """How far the orbit's start is from the true periodic state, to first order in the
@@ -423,7 +399,7 @@ def first_try_stands(
     w, w_coarse = first.fixed_point_offset(), first.coarse.fixed_point_offset()
     if w is None or w_coarse is None:
         return first.defect is None
-    gap = float(np.max(np.abs(w - w_coarse))) * first.error_scale
+    gap = float(np.max(np.abs(w - w_coarse)))
     atol = OFFSET_ATOL * size if offset_atol is None else offset_atol
     return gap <= OFFSET_RTOL * float(np.max(np.abs(w))) + atol
 
@@ -475,7 +451,6 @@ def orbit_floquet(
     after: FloquetResult | None = None,
     offset_atol: float | None = None,
     mu_tol: float = SPREAD_TOL,
-    close: bool = True,
 ) -> FloquetResult:
     """Floquet multipliers of a periodic orbit of a first-order system z' = f(t, z), given by
     its states at M equispaced instants of the period.
@@ -484,9 +459,8 @@ def orbit_floquet(
     `steps` the monodromy first tries FIRST_STEPS steps and keeps them when the orbit has at
     most FIRST_TRY_MAX_INSTANTS instants and the coarse product (a third of the steps, from the
     same exponentials) agrees with it (`first_try_stands`); otherwise it takes the counts of
-    STEP_LADDER in turn (after SECOND_STEPS, see `close`), each checked against the one before,
-    until one stands or the ladder ends (docs/stability.md, "How the multipliers are
-    computed").
+    STEP_LADDER in turn, each checked against the one before, until one stands or the ladder
+    ends (docs/stability.md, "How the multipliers are computed").
 
     Parameters
     ----------
@@ -512,13 +486,6 @@ def orbit_floquet(
         (`first_try_stands`).
     mu_tol : float
         How far their |mu|max may differ (`first_try_stands`).
-    close : bool
-        Whether a resolved orbit's first try that does not stand is checked against
-        SECOND_STEPS before the ladder's counts, where the offsets are not compared
-        (`offset_atol` inf).  False: the ladder at once, as an ambiguous certificate asks:
-        it needs an offset resolved well inside the spread that made it ambiguous, and the
-        offsets of two close counts differ by the rule's noise there, not by its
-        second-order error.
 
     Returns
     -------
@@ -531,9 +498,9 @@ def orbit_floquet(
         Phi, defect, _ = _monodromy(jac, Z, period, steps, rhs, rows, coarse=False)
         return multipliers_of(Phi, steps, time.perf_counter() - t0, defect)
     size = float(np.max(np.abs(Z)))
-    resolved = Z.shape[0] <= FIRST_TRY_MAX_INSTANTS
     previous = after
     if previous is None:
+        resolved = Z.shape[0] <= FIRST_TRY_MAX_INSTANTS
         Phi, defect, low = _monodromy(jac, Z, period, FIRST_STEPS, rhs, rows, coarse=resolved)
         if resolved:  # the first try may stand: its multipliers, and its check's radius
             previous = multipliers_of(Phi, FIRST_STEPS, 0.0, defect)
@@ -543,9 +510,7 @@ def orbit_floquet(
                 return previous
         else:  # only the ladder's first check
             previous = radius_of(Phi, FIRST_STEPS, defect)
-    # a close count resolves |mu|max, not offsets near the rule's noise floor
-    close = close and resolved and offset_atol == math.inf
-    for count in _counts_after(previous.steps, close):
+    for count in (S for S in STEP_LADDER if S > previous.steps):
         Phi, defect, _ = _monodromy(jac, Z, period, count, rhs, rows, coarse=False)
         current = radius_of(Phi, count, defect)
         current.coarse = _alone(previous)
@@ -555,14 +520,6 @@ def orbit_floquet(
     previous = with_multipliers(previous)
     previous.seconds = time.perf_counter() - t0
     return previous
-
-
-def _counts_after(steps: int, close: bool) -> tuple[int, ...]:
-    """The step counts taken after a product of `steps` that does not stand: SECOND_STEPS
-    after a first try where a close count may check it, then the counts of STEP_LADDER
-    above."""
-    second = (SECOND_STEPS,) if close and steps == FIRST_STEPS else ()
-    return second + tuple(S for S in STEP_LADDER if S > steps)
 
 
 def _alone(fl: FloquetResult) -> FloquetResult:
@@ -581,7 +538,6 @@ def beam_floquet(
     after: FloquetResult | None = None,
     offset_atol: float | None = None,
     mu_tol: float = SPREAD_TOL,
-    close: bool = True,
 ) -> FloquetResult:
     """Floquet multipliers and one-period defect of a collocated orbit of the beam.
 
@@ -606,8 +562,6 @@ def beam_floquet(
         How far two counts' fixed-point offsets may differ (`first_try_stands`).
     mu_tol : float
         How far their |mu|max may differ (`first_try_stands`).
-    close : bool
-        Whether a close count may check a resolved first try (`orbit_floquet`).
 
     Returns
     -------
@@ -621,8 +575,7 @@ def beam_floquet(
         return model.first_order_rows(Z[:, :n], Z[:, n:], lam, lam_dot)
 
     Z = np.concatenate([theta, theta_t], axis=1)
-    return orbit_floquet(None, Z, dl.period, steps, None, rows, after, offset_atol, mu_tol,
-                         close)  # fmt: skip
+    return orbit_floquet(None, Z, dl.period, steps, None, rows, after, offset_atol, mu_tol)
 
 
 def sampled_beam_floquet(
