@@ -233,11 +233,10 @@ class DiscreteModel(ABC):
         """
         n = self.n
         rows = self.residual_rows(theta, theta_t, None, lam, lam_dot, True)
+        inverse = rows.mass_inverse()  # for the accelerations and the 2 n columns below
         acc = rows.solved()
-        dq, dqt, mass = rows.blocks()
-        # M^-1 by its inverse: half the time of numpy's batched solve for the 2 n right-hand
-        # sides of each instant (the 79 x 79 Floquet steps), 2e-13 apart at condition 7e4
-        X = np.linalg.inv(mass) @ np.concatenate([dq, dqt], axis=2)
+        dq, dqt, _ = rows.blocks()
+        X = inverse @ np.concatenate([dq, dqt], axis=2)
         idx = np.arange(n)
         J = np.zeros((theta.shape[0], 2 * n, 2 * n))
         J[:, idx, n + idx] = 1.0
@@ -451,6 +450,7 @@ class Residual(ABC):
 
     R: np.ndarray
     _lu: tuple | None = None
+    _inverse: np.ndarray | None = None
 
     @abstractmethod
     def mass(self) -> np.ndarray:
@@ -493,8 +493,25 @@ class Residual(ABC):
         if keep and self.R.shape[0] == 1:
             self._lu = lu_factor(self.mass()[0], check_finite=False)
 
+    def mass_inverse(self) -> np.ndarray:
+        """M^-1 at each instant, computed once and kept: `mass_solve` then applies it.
+
+        The first-order Jacobian multiplies the 2 n columns of the blocks by it: with the
+        inverse that takes half the time of numpy's batched solve at n = 39, 2e-13 apart at the
+        mass matrix's condition 7e4.
+
+        Returns
+        -------
+        numpy.ndarray
+            Shape (m, n, n).
+        """
+        if self._inverse is None:
+            self._inverse = np.linalg.inv(self.mass())
+        return self._inverse
+
     def mass_solve(self, rhs: np.ndarray) -> np.ndarray:
-        """M^-1 rhs at each instant (by the LU `solved(keep_lu=True)` kept, if any).
+        """M^-1 rhs at each instant (by the LU `solved(keep_lu=True)` or the inverse
+        `mass_inverse` kept, if any).
 
         Parameters
         ----------
@@ -508,6 +525,8 @@ class Residual(ABC):
         """
         if self._lu is not None:
             return lu_solve(self._lu, rhs[0], check_finite=False)[None]
+        if self._inverse is not None:
+            return matvec_rows(self._inverse, rhs)
         return np.linalg.solve(self.mass(), rhs[..., None])[..., 0]
 
     def solved(self, keep_lu: bool = False) -> np.ndarray:
