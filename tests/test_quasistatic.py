@@ -7,7 +7,8 @@ from conftest import elastica
 from rotbeam.model.elastica import DiscreteElastica
 from rotbeam.model.params import Dimensionless, Effects
 from rotbeam.model.static_bvp import solve_static_bvp
-from rotbeam.solve.quasistatic import quasistatic_series, solve_static
+from rotbeam.solve import quasistatic
+from rotbeam.solve.quasistatic import anderson_mix, quasistatic_series, shared_chord, solve_static
 
 
 def linear_cantilever(s, hub, lam_dot):
@@ -93,3 +94,56 @@ def test_batched_static_equals_continuation(monkeypatch, omega0, f_d, a):
     monkeypatch.setattr(quasistatic, "batched_static", lambda *args, **kw: None)
     slow = quasistatic.quasistatic_series(model, taus)
     np.testing.assert_allclose(fast, slow, rtol=0, atol=1e-12 * np.max(np.abs(slow)))
+
+
+def test_anderson_mix_solves_linear_contractions_as_gmres_does():
+    """x -> T x + c at three instants with their own 2 x 2 contractions (spectral radius 0.9,
+    0.99 and 0.5, one of them non-normal): mixed with the two iterates before it (depth 2),
+    each instant reaches its own fixed point (I - T)^-1 c to 1e-12 within 5 iterations, as
+    GMRES does in two dimensions; the plain iteration is 0.99^5 of the way off at the slowest."""
+    T = np.array([[[0.9, 0.0], [0.0, -0.3]], [[0.99, 0.5], [0.0, 0.2]], [[0.5, 0.0], [0.1, 0.5]]])
+    c = np.array([[1.0, 2.0], [-1.0, 0.5], [3.0, 1.0]])
+    fixed = np.linalg.solve(np.eye(2)[None] - T, c[..., None])[..., 0]
+    x, history = np.zeros((3, 2)), []
+    for _ in range(5):
+        step = np.einsum("mij,mj->mi", T, x) + c - x
+        history = [*history, (x + step, step)][-3:]
+        x = anderson_mix(history)
+    np.testing.assert_allclose(x, fixed, rtol=0, atol=1e-12 * np.max(np.abs(fixed)))
+    plain = np.zeros((3, 2))
+    for _ in range(5):
+        plain = np.einsum("mij,mj->mi", T, plain) + c
+    assert np.max(np.abs(plain - fixed)) > 1.0
+
+
+@pytest.mark.parametrize("omega0, f_d, a", [(5.0, 7.0, 3.0), (5.0, 15.0, 3.0), (100.0, 5.0, 1.0)])
+def test_accelerated_chord_meets_newton_in_fewer_residuals(monkeypatch, omega0, f_d, a):
+    """The shared chord at 64 instants (N = 40) with its iterates mixed (`ANDERSON_DEPTH`)
+    against the same chord unmixed (depth 0): the same equilibria as each instant's own Newton
+    (`solve_static`) to 1e-11 of the largest angle, in fewer residuals of all instants
+    (measured 7 against 14 at 5 rad/s, 7 Hz and 6 against 8 at 100 rad/s, 5 Hz); at 5 rad/s,
+    15 Hz the unmixed chord stops after 3 as not contracting (handing over to the batched
+    Newton), the mixed one converges in 8."""
+    from rotbeam.runs.scene import build_scene
+
+    dl = build_scene({"drive": {"omega0": omega0, "f_d": f_d, "amplitude": a}}).dimensionless
+    model = DiscreteElastica(dl, 40)
+    lam, lam_dot = model.drive_rows(np.arange(64) * dl.period / 64)
+    newton = np.array([solve_static(model, lk, ldk).theta for lk, ldk in zip(lam, lam_dot)])
+    calls = []
+
+    def counted(*args, **kwargs):
+        calls.append(1)
+        return DiscreteElastica.static_rows(model, *args, **kwargs)
+
+    monkeypatch.setattr(model, "static_rows", counted)
+    counts = {}
+    for depth in (0, quasistatic.ANDERSON_DEPTH):
+        monkeypatch.setattr(quasistatic, "ANDERSON_DEPTH", depth)
+        calls.clear()
+        theta, converged = shared_chord(model, lam, lam_dot)
+        counts[depth] = (len(calls), converged)
+    assert converged
+    np.testing.assert_allclose(theta, newton, rtol=0, atol=1e-11 * np.max(np.abs(newton)))
+    plain, mixed = counts[0], counts[quasistatic.ANDERSON_DEPTH]
+    assert mixed[0] < plain[0] or not plain[1]

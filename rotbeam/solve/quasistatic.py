@@ -103,6 +103,48 @@ CHORD_MAX_ANGLE = 0.1
 #: factor (then each instant gets its own Jacobian)
 CHORD_CONTRACTION = 0.5
 
+#: the chord's iterates are mixed with this many earlier ones (Anderson acceleration, each
+#: instant its own weights): 6-7 residuals of all instants instead of 8-14 (docs/numerics.md)
+ANDERSON_DEPTH = 2
+
+
+def anderson_mix(history: list[tuple[np.ndarray, np.ndarray]]) -> np.ndarray:
+    """The next iterate of a fixed-point iteration x -> g(x) = x + f(x) from its last ones,
+    at many independent instants at once (Anderson acceleration, type II).
+
+    With d = len(history) - 1 differences dF_i = f_(i+1) - f_i and dG_i = g_(i+1) - g_i, each
+    instant takes gamma minimising |f_last - sum gamma_i dF_i| (its d x d normal equations,
+    regularised by 1e-12 of their trace) and returns g_last - sum gamma_i dG_i.  On a linear
+    contraction this is GMRES on the iteration's residual (Walker and Ni, SIAM J. Numer. Anal.
+    49, 2011): the chord's error components that contract slowest are removed first.
+
+    Parameters
+    ----------
+    history : list of tuple of numpy.ndarray
+        (g(x_k), f(x_k)) of the last iterations, oldest first, each of shape (m, n).
+
+    Returns
+    -------
+    numpy.ndarray
+        The mixed iterate, shape (m, n); g of the last iteration where there is no earlier one
+        or an instant's normal equations are singular.
+    """
+    g_last, f_last = history[-1]
+    if len(history) < 2:
+        return g_last
+    dF = np.stack([b[1] - a[1] for a, b in zip(history, history[1:], strict=False)], axis=1)
+    dG = np.stack([b[0] - a[0] for a, b in zip(history, history[1:], strict=False)], axis=1)
+    A = np.einsum("mdn,men->mde", dF, dF)
+    d = A.shape[1]
+    A += (1e-12 * np.trace(A, axis1=1, axis2=2) + 1e-300)[:, None, None] * np.eye(d)
+    b = np.einsum("mdn,mn->md", dF, f_last)
+    try:
+        gamma = np.linalg.solve(A, b[..., None])[..., 0]
+    except np.linalg.LinAlgError:
+        return g_last
+    mixed = g_last - np.einsum("md,mdn->mn", gamma, dG)
+    return mixed if np.all(np.isfinite(mixed)) else g_last
+
 
 def shared_chord(
     model: DiscreteModel,
@@ -117,7 +159,8 @@ def shared_chord(
     The instants' Jacobians differ from it by the load's variation over the drive and, at
     second order, by the angles; where that is small (all but the largest responses) the
     iterations contract by 10-20x a step, and each costs one residual of all instants and one
-    triangular solve instead of m Jacobians.
+    triangular solve instead of m Jacobians.  Each iterate is mixed with the ANDERSON_DEPTH
+    before it (`anderson_mix`).
 
     Parameters
     ----------
@@ -148,6 +191,7 @@ def shared_chord(
     except (ValueError, np.linalg.LinAlgError):
         return theta, False
     previous = np.inf
+    history: list[tuple[np.ndarray, np.ndarray]] = []
     for _ in range(maxiter):
         r = model.static_rows(theta, lam, lam_dot)
         step = -sla.lu_solve(lu, r.T, check_finite=False).T
@@ -158,6 +202,8 @@ def shared_chord(
         previous = size
         if step_converged(step, theta, rtol, axis=-1):
             return theta, True
+        history = [*history, (theta, step)][-(ANDERSON_DEPTH + 1) :]
+        theta = anderson_mix(history)
     return theta, False
 
 
