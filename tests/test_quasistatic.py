@@ -129,7 +129,8 @@ def test_accelerated_chord_meets_newton_in_fewer_residuals(monkeypatch, omega0, 
     dl = build_scene({"drive": {"omega0": omega0, "f_d": f_d, "amplitude": a}}).dimensionless
     model = DiscreteElastica(dl, 40)
     lam, lam_dot = model.drive_rows(np.arange(64) * dl.period / 64)
-    newton = np.array([solve_static(model, lk, ldk).theta for lk, ldk in zip(lam, lam_dot)])
+    newton = np.array([solve_static(model, lk, ldk).theta
+                       for lk, ldk in zip(lam, lam_dot, strict=True)])  # fmt: skip
     calls = []
 
     def counted(*args, **kwargs):

