@@ -4,6 +4,7 @@ zero), by Newton with the exact Jacobian of the model's static equations."""
 from __future__ import annotations
 
 from dataclasses import dataclass
+from itertools import pairwise
 
 import numpy as np
 
@@ -132,17 +133,17 @@ def anderson_mix(history: list[tuple[np.ndarray, np.ndarray]]) -> np.ndarray:
     g_last, f_last = history[-1]
     if len(history) < 2:
         return g_last
-    dF = [b[1] - a[1] for a, b in zip(history, history[1:], strict=False)]
-    dG = [b[0] - a[0] for a, b in zip(history, history[1:], strict=False)]
+    dG = [newer[0] - older[0] for older, newer in pairwise(history)]
+    dF = [newer[1] - older[1] for older, newer in pairwise(history)]
     d = len(dF)
-    A, b = np.empty((f_last.shape[0], d, d)), np.empty((f_last.shape[0], d))
+    gram, rhs = np.empty((f_last.shape[0], d, d)), np.empty((f_last.shape[0], d))
     for i in range(d):  # row by row: a third less time than einsum over the stacked arrays
-        b[:, i] = np.einsum("mn,mn->m", dF[i], f_last)
+        rhs[:, i] = np.einsum("mn,mn->m", dF[i], f_last)
         for j in range(i, d):
-            A[:, i, j] = A[:, j, i] = np.einsum("mn,mn->m", dF[i], dF[j])
-    A += (1e-12 * np.trace(A, axis1=1, axis2=2) + 1e-300)[:, None, None] * np.eye(d)
+            gram[:, i, j] = gram[:, j, i] = np.einsum("mn,mn->m", dF[i], dF[j])
+    gram += (1e-12 * np.trace(gram, axis1=1, axis2=2) + 1e-300)[:, None, None] * np.eye(d)
     try:
-        gamma = np.linalg.solve(A, b[..., None])[..., 0]
+        gamma = np.linalg.solve(gram, rhs[..., None])[..., 0]
     except np.linalg.LinAlgError:
         return g_last
     mixed = g_last.copy()
