@@ -125,11 +125,11 @@ def test_push_off_an_unstable_orbit_along_its_leading_direction():
     max |v_theta| = 1, so the push is LEAVE_FRACTION x size along it; a stable orbit is not
     pushed."""
     mu = np.array([1.5, 0.5, 0.2, 0.1], dtype=complex)
-    unstable = OrbitVerdict(None, FloquetResult(mu, np.diag(mu.real), 12, 0.0))
+    unstable = OrbitVerdict(None, FloquetResult(np.diag(mu.real), 12, 0.0))
     z = np.array([0.3, -0.2, 1.0, 2.0])
     pushed = unstable.march_start(z, 2.0)
     np.testing.assert_allclose(np.abs(pushed - z), [LEAVE_FRACTION * 2.0, 0, 0, 0], atol=1e-15)
-    stable = OrbitVerdict(None, FloquetResult(mu / 2, np.diag(mu.real / 2), 12, 0.0))
+    stable = OrbitVerdict(None, FloquetResult(np.diag(mu.real / 2), 12, 0.0))
     assert stable.march_start(z, 2.0) is z
 
 

@@ -375,9 +375,8 @@ def test_floquet_tol_sets_how_far_the_reported_multipliers_are_resolved(integrat
 def _synthetic(defect, coarse_defect):
     """Phi = I / 2 (so the offset is 2 x defect, closed form) with a coarse twin."""
     Phi = 0.5 * np.eye(4)
-    mu = np.full(4, 0.5 + 0j)
-    coarse = FloquetResult(mu, Phi, 4, 0.0, defect=np.asarray(coarse_defect, dtype=float))
-    return FloquetResult(mu, Phi, 12, 0.0, defect=np.asarray(defect, dtype=float), coarse=coarse)
+    coarse = FloquetResult(Phi, 4, 0.0, defect=np.asarray(coarse_defect, dtype=float))
+    return FloquetResult(Phi, 12, 0.0, defect=np.asarray(defect, dtype=float), coarse=coarse)
 
 
 @pytest.mark.parametrize(
@@ -590,18 +589,32 @@ def test_spectral_radius_of_beam_monodromies_against_their_eigenvalues(omega0, f
         assert abs(spectral_radius(Phi) - mu) <= 1e-8 * mu
 
 
-def test_the_ladder_reports_the_multipliers_of_the_count_it_keeps():
-    """The products that only check another carry their spectral radius alone; the one the
-    ladder keeps (5 rad/s, 7 Hz) and a kept first try (100 rad/s, 5 Hz) carry all their
-    multipliers, the eigenvalues of their monodromy, with max_abs the leading one's modulus."""
+def test_the_ladder_reports_its_radius_and_the_multipliers_on_demand():
+    """Every product of the automatic pass, the one it keeps (5 rad/s, 7 Hz: from the ladder;
+    100 rad/s, 5 Hz: a first try) and the one it was checked against, carries |mu|max as its
+    spectral radius, within 1e-8 of the largest |eigenvalue| of its monodromy; the multipliers
+    are those eigenvalues, largest first, computed when asked for and then kept."""
     for omega0, f_d in ((5.0, 7.0), (100.0, 5.0)):
         dl, model, res = _beam_orbit(omega0, f_d)
         fl = beam_floquet(model, res.theta, res.theta_t)
-        mu = np.linalg.eigvals(fl.monodromy)
-        assert fl.radius is None and fl.multipliers.size == mu.size
-        np.testing.assert_allclose(np.sort(np.abs(fl.multipliers)), np.sort(np.abs(mu)),
+        assert fl.coarse is not None
+        for product in (fl.coarse, fl):
+            mu = np.linalg.eigvals(product.monodromy)
+            assert product.radius is not None and not product._multipliers
+            assert abs(product.max_abs - np.abs(mu).max()) <= 1e-8
+        np.testing.assert_allclose(np.abs(fl.multipliers), np.sort(np.abs(mu))[::-1],
                                    rtol=1e-12, atol=0)  # fmt: skip
-        assert fl.max_abs == pytest.approx(abs(fl.multipliers[0]), rel=1e-15)
-        assert fl.coarse is not None and fl.coarse.radius is not None
-        assert fl.coarse.multipliers.size == 0
-        assert abs(fl.coarse.max_abs - np.abs(np.linalg.eigvals(fl.coarse.monodromy)).max()) <= 1e-8
+        assert fl.multipliers is fl.multipliers
+
+
+def test_a_fixed_step_count_reports_the_leading_eigenvalue():
+    """A fixed count is reported as the eigenvalues of its monodromy (no radius): max_abs is the
+    leading one's modulus to round-off, and the multipliers of an empty monodromy are none."""
+    dl, model, res = _beam_orbit(100.0, 5.0)
+    fl = beam_floquet(model, res.theta, res.theta_t, steps=12)
+    mu = np.linalg.eigvals(fl.monodromy)
+    assert fl.radius is None
+    assert fl.max_abs == pytest.approx(np.abs(mu).max(), rel=1e-14)
+    assert float(np.abs(fl.multipliers[0])) == fl.max_abs
+    empty = FloquetResult(np.zeros((0, 0)), 0, 0.0)
+    assert empty.multipliers.size == 0 and empty.max_abs == 0.0

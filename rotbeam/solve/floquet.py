@@ -70,7 +70,6 @@ class FloquetResult:
     monodromy was built for (dimensionless tau, in units of T, for the beam).
     """
 
-    multipliers: np.ndarray  #: complex, sorted by decreasing modulus
     monodromy: np.ndarray  #: (2n, 2n) fundamental matrix over one period
     steps: int  #: Magnus steps over the period
     seconds: float  #: time the computation took [s] (time.perf_counter)
@@ -80,13 +79,24 @@ class FloquetResult:
     #: third step's exponential cubed) for a first try, the count of STEP_LADDER before it
     #: after that; their distance estimates the error.  None when the steps were fixed
     coarse: FloquetResult | None = None
-    #: max |mu| as `spectral_radius` gives it, for a product that only checks another: its
-    #: multipliers are then not computed (empty), and only `max_abs`, `spread` and the offset
-    #: are asked of it
+    #: max |mu| as `spectral_radius` gives it (the step ladder's products: every verdict and
+    #: check asks for |mu|max alone); None: the leading eigenvalue's modulus (a fixed count)
     radius: float | None = None
     #: (w,) once `fixed_point_offset` has solved for it: the acceptance of a first try and the
     #: certificate both ask
     _offset: tuple = field(default=(), init=False, repr=False, compare=False)
+    #: (mu,) once `multipliers` has computed them
+    _multipliers: tuple = field(default=(), init=False, repr=False, compare=False)
+
+    @property
+    def multipliers(self) -> np.ndarray:
+        """The eigenvalues of the monodromy, complex, sorted by decreasing modulus: computed
+        when first asked (a crossing, a branch, a report of the kind of the leading one), not
+        for a verdict, which needs |mu|max alone (`max_abs`)."""
+        if not self._multipliers:
+            mu = np.linalg.eigvals(self.monodromy) if self.monodromy.size else np.zeros(0, complex)
+            self._multipliers = (mu[np.argsort(-np.abs(mu), kind="stable")],)
+        return self._multipliers[0]
 
     @property
     def spread(self) -> float:
@@ -114,8 +124,8 @@ class FloquetResult:
 
     @property
     def max_abs(self) -> float:
-        """The largest |mu|: the leading multiplier's modulus, or `radius` for a product that
-        only checks another (0 without either)."""
+        """The largest |mu|: `radius` where it is set, else the leading multiplier's modulus (0
+        for an empty monodromy)."""
         if self.radius is not None:
             return self.radius
         return float(np.abs(self.multipliers[0])) if self.multipliers.size else 0.0
@@ -132,17 +142,15 @@ class FloquetResult:
         return self.max_abs > 1.0 + STABLE_MARGIN
 
     def describe(self) -> str:
-        """The leading multiplier in words, for messages.
+        """|mu|max and the verdict in words, for messages (`crossing` says how an orbit that is
+        not stable loses its stability).
 
         Returns
         -------
         str
-            '|mu|max = 0.888269 (complex pair, stable)': the largest modulus, whether the
-            leading multiplier is real or one of a complex pair, and stable or UNSTABLE.
+            '|mu|max = 0.888269 (stable)', or '(UNSTABLE)' where the orbit is not stable.
         """
-        mu = self.multipliers[0] if self.multipliers.size else 0.0
-        kind = "real" if abs(np.imag(mu)) <= 1e-9 * max(abs(mu), 1e-300) else "complex pair"
-        return f"|mu|max = {self.max_abs:.6f} ({kind}, {'stable' if self.stable else 'UNSTABLE'})"
+        return f"|mu|max = {self.max_abs:.6f} ({'stable' if self.stable else 'UNSTABLE'})"
 
     def crossing(self) -> str:
         """How the orbit loses stability, from where its leading multiplier leaves the circle.
@@ -256,8 +264,8 @@ def spectral_radius(Phi: np.ndarray) -> float:
 
 
 def radius_of(Phi: np.ndarray, steps: int, defect: np.ndarray | None = None) -> FloquetResult:
-    """A product that only checks another: its largest |mu| by `spectral_radius`, no
-    multipliers (`with_multipliers` adds them where it is kept after all).
+    """A product of the step ladder: its largest |mu| by `spectral_radius`, the multipliers
+    left until they are asked for (`FloquetResult.multipliers`).
 
     Parameters
     ----------
@@ -271,57 +279,9 @@ def radius_of(Phi: np.ndarray, steps: int, defect: np.ndarray | None = None) -> 
     Returns
     -------
     FloquetResult
-        Phi, `radius` set, empty multipliers.
+        Phi, `radius` set.
     """
-    return FloquetResult(np.zeros(0, dtype=complex), Phi, steps, 0.0, defect=defect,
-                         radius=spectral_radius(Phi))  # fmt: skip
-
-
-def with_multipliers(fl: FloquetResult) -> FloquetResult:
-    """`fl` with its multipliers computed (itself where they are): a ladder's product that
-    stands after all.
-
-    Parameters
-    ----------
-    fl : FloquetResult
-        A product, perhaps made by `radius_of`.
-
-    Returns
-    -------
-    FloquetResult
-        The same product, its coarse product and offset kept, with its multipliers.
-    """
-    if fl.radius is None:
-        return fl
-    out = multipliers_of(fl.monodromy, fl.steps, fl.seconds, fl.defect)
-    out.coarse, out._offset = fl.coarse, fl._offset
-    return out
-
-
-def multipliers_of(
-    Phi: np.ndarray, steps: int, seconds: float, defect: np.ndarray | None = None
-) -> FloquetResult:
-    """The multipliers of a monodromy matrix, sorted by decreasing modulus.
-
-    Parameters
-    ----------
-    Phi : numpy.ndarray
-        The monodromy, shape (dim, dim).
-    steps : int
-        Magnus steps it was built from (recorded in the result).
-    seconds : float
-        Time it took [s] (recorded).
-    defect : numpy.ndarray or None
-        The orbit's one-period defect, shape (dim,), if measured.
-
-    Returns
-    -------
-    FloquetResult
-        Phi, its eigenvalues largest |mu| first, and the defect.
-    """
-    mu = np.linalg.eigvals(Phi)
-    mu = mu[np.argsort(-np.abs(mu), kind="stable")]
-    return FloquetResult(mu, Phi, steps, seconds, defect=defect)
+    return FloquetResult(Phi, steps, 0.0, defect=defect, radius=spectral_radius(Phi))
 
 
 def trig_eval(X: np.ndarray, period: float, t: np.ndarray, derivative: int = 0) -> np.ndarray:
@@ -496,20 +456,18 @@ def orbit_floquet(
     t0 = time.perf_counter()
     if steps is not None:
         Phi, defect, _ = _monodromy(jac, Z, period, steps, rhs, rows, coarse=False)
-        return multipliers_of(Phi, steps, time.perf_counter() - t0, defect)
+        return FloquetResult(Phi, steps, time.perf_counter() - t0, defect=defect)
     size = float(np.max(np.abs(Z)))
     previous = after
     if previous is None:
         resolved = Z.shape[0] <= FIRST_TRY_MAX_INSTANTS
         Phi, defect, low = _monodromy(jac, Z, period, FIRST_STEPS, rhs, rows, coarse=resolved)
-        if resolved:  # the first try may stand: its multipliers, and its check's radius
-            previous = multipliers_of(Phi, FIRST_STEPS, 0.0, defect)
+        previous = radius_of(Phi, FIRST_STEPS, defect)
+        if resolved:  # the first try may stand, checked against its coarse product
             previous.coarse = radius_of(low[0], FIRST_STEPS // 3, low[1])
             if first_try_stands(previous, size, offset_atol, mu_tol):
                 previous.seconds = time.perf_counter() - t0
                 return previous
-        else:  # only the ladder's first check
-            previous = radius_of(Phi, FIRST_STEPS, defect)
     for count in (S for S in STEP_LADDER if S > previous.steps):
         Phi, defect, _ = _monodromy(jac, Z, period, count, rhs, rows, coarse=False)
         current = radius_of(Phi, count, defect)
@@ -517,16 +475,14 @@ def orbit_floquet(
         previous = current
         if first_try_stands(current, size, offset_atol, mu_tol):
             break
-    previous = with_multipliers(previous)
     previous.seconds = time.perf_counter() - t0
     return previous
 
 
 def _alone(fl: FloquetResult) -> FloquetResult:
     """`fl` without the product it was checked against (a ladder keeps one comparison)."""
-    out = FloquetResult(fl.multipliers, fl.monodromy, fl.steps, fl.seconds, fl.method, fl.defect,
-                        radius=fl.radius)  # fmt: skip
-    out._offset = fl._offset
+    out = FloquetResult(fl.monodromy, fl.steps, fl.seconds, fl.method, fl.defect, radius=fl.radius)
+    out._offset, out._multipliers = fl._offset, fl._multipliers
     return out
 
 
