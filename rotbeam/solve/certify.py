@@ -19,7 +19,9 @@ import numpy as np
 
 from ..model.base import DiscreteModel
 from ..model.params import Dimensionless
+from .collocated_floquet import collocated_multipliers
 from .floquet import (
+    FIRST_TRY_MAX_INSTANTS,
     SPREAD_TOL,
     STEP_LADDER,
     FloquetResult,
@@ -154,8 +156,15 @@ def reported_multipliers(
     fl: FloquetResult | None,
     mu_tol: float = SPREAD_TOL,
 ) -> FloquetResult | None:
-    """The multipliers of a collocated orbit that is reported: `fl` (a candidate's), with the
-    step ladder gone on until |mu|max stands to `mu_tol`.
+    """The multipliers of a collocated orbit that is reported: `fl` (a candidate's), resolved
+    until |mu|max stands to `mu_tol`.
+
+    An orbit of more than FIRST_TRY_MAX_INSTANTS instants takes them from a Radau collocation
+    of its variational equation (`collocated_multipliers`: 32 to 128 intervals, where the step
+    ladder would climb to 337 or 1012 exponentials), checked against `fl`, which the candidate
+    check resolved to a tenth of its distance from 1: where the two differ by more than that,
+    `fl`'s spread and `mu_tol` together, or no two interval counts agree, the ladder goes on
+    instead (docs/stability.md, "Multipliers from a collocation").
 
     Parameters
     ----------
@@ -180,6 +189,11 @@ def reported_multipliers(
         return fl
     if fl.steps >= STEP_LADDER[-1]:
         return fl
+    if periodic.M > FIRST_TRY_MAX_INSTANTS:
+        collocated = collocated_multipliers(model, periodic.theta, periodic.theta_t, mu_tol)
+        resolved = 0.1 * abs(1.0 - fl.max_abs) + fl.spread + mu_tol
+        if collocated is not None and abs(collocated.max_abs - fl.max_abs) <= resolved:
+            return collocated
     return beam_floquet(model, periodic.theta, periodic.theta_t, after=fl, offset_atol=math.inf,
                         mu_tol=mu_tol)  # fmt: skip
 

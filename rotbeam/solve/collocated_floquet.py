@@ -1,0 +1,192 @@
+"""Floquet multipliers from a collocation of the variational equation on equal intervals: the
+product of the intervals' propagators (what a condensation of that collocation's Jacobian gives).
+
+Radau IIA collocation is L-stable: the stiff bending modes, which it does not resolve, go to
+zero, below the resolved slow modes that carry |mu|max; its |mu|max converges smoothly once
+the intervals sample J(t) finely, where the exponential product's step ladder climbs to
+hundreds of steps.  Its fixed-point offset misses the stiff part, so the certificate keeps the
+exponentials (`rotbeam.solve.floquet`).  Gauss collocation (|R| -> 1 on the imaginary axis)
+puts the stiff modes on the unit circle.  Derivation and measurements: docs/stability.md,
+"Multipliers from a collocation".
+"""
+
+from __future__ import annotations
+
+import time
+from typing import Literal
+
+import numpy as np
+from numpy.polynomial import legendre
+
+from ..config.parameters import default
+from ..model.base import DiscreteModel
+from .floquet import FloquetResult, radius_of, trig_eval
+from .timebudget import check_deadline
+
+#: collocation points a interval (order 2 s of Gauss, 2 s - 1 of Radau IIA)
+STAGES = 4
+Kind = Literal["gauss", "radau"]
+
+
+def collocation_tableau(kind: Kind, stages: int = STAGES) -> tuple[np.ndarray, np.ndarray]:
+    """The nodes and the integration matrix of s-point collocation on [0, 1].
+
+    Parameters
+    ----------
+    kind : {"gauss", "radau"}
+        Gauss-Legendre nodes (A-stable, |R(z)| -> 1 as z -> infinity along the imaginary axis)
+        or Radau IIA nodes, the last at 1 (L-stable, R(z) -> 0).
+    stages : int
+        Collocation points a interval, >= 1.
+
+    Returns
+    -------
+    c : numpy.ndarray
+        The nodes, shape (s,), increasing in (0, 1].
+    A : numpy.ndarray
+        a_ij = int_0^{c_i} l_j(t) dt with l_j the Lagrange polynomials of the nodes, shape
+        (s, s); the weights b_j = int_0^1 l_j are its last row for Radau.
+    """
+    if kind == "radau":  # roots of P_s - P_{s-1} on [-1, 1], the last at 1
+        coef = np.zeros(stages + 1)
+        coef[stages], coef[stages - 1] = 1.0, -1.0
+        x = np.sort(np.real(legendre.legroots(coef)))
+    else:
+        x = legendre.leggauss(stages)[0]
+    c = (x + 1.0) / 2.0
+    A = np.zeros((stages, stages + 1))  # the last column: int_0^1 l_j, the weights b
+    for j in range(stages):
+        others = np.delete(c, j)
+        primitive = np.polyint(np.poly1d(others, r=True) / np.prod(c[j] - others))
+        A[:, j] = primitive(c) - primitive(0.0)
+        A[j, stages] = primitive(1.0) - primitive(0.0)
+    return c, A[:, :stages], A[:, stages]
+
+
+def collocated_monodromy(
+    model: DiscreteModel,
+    theta: np.ndarray,
+    theta_t: np.ndarray,
+    intervals: int,
+    kind: Kind = "radau",
+    stages: int = STAGES,
+) -> tuple[np.ndarray, np.ndarray]:
+    """The monodromy and one-period defect of a collocated orbit by s-point collocation of its
+    variational equation on equal intervals: the product of the intervals' propagators.
+
+    With z = (q, v) and J = [[0, I], [X_q, X_v]] the stage rates V solve
+    (I - h A X_v - h^2 A X_q A) V = 1 v0 + h A X_q 1 q0 + h A g (blocks over the stages, g the
+    interpolant's residual with its sign for e' = J e - r), a system of s n per interval; then
+    q1 = q0 + h sum_i b_i V_i and v1 = v0 + h sum_i b_i (X_q,i Q_i + X_v,i V_i + g_i).
+
+    Parameters
+    ----------
+    model : DiscreteModel
+        The model and its drive; the period is its `dl.period`.
+    theta, theta_t : numpy.ndarray
+        The orbit at M equispaced instants of the period, the first at tau = 0, shape (M, n).
+    intervals : int
+        Equal intervals over the period.
+    kind : {"gauss", "radau"}
+        The collocation nodes (`collocation_tableau`).
+    stages : int
+        Collocation points a interval.
+
+    Returns
+    -------
+    Phi : numpy.ndarray
+        The monodromy, shape (2 n, 2 n).
+    defect : numpy.ndarray
+        The one-period defect of the orbit's interpolant, shape (2 n,).
+    """
+    n, period = model.n, model.dl.period
+    h = period / intervals
+    c, A, b = collocation_tableau(kind, stages)
+    t = ((np.arange(intervals)[:, None] + c[None, :]) * h).ravel()
+    Z = np.concatenate([theta, theta_t], axis=1)
+    Zs = trig_eval(Z, period, t)
+    lam, lam_dot = model.drive_rows(t)
+    F, J = model.first_order_rows(Zs[:, :n], Zs[:, n:], lam, lam_dot)
+    g = (F[:, n:] - trig_eval(Z, period, t, derivative=1)[:, n:]).reshape(intervals, stages, n)
+    Xq = J[:, n:, :n].reshape(intervals, stages, n, n)
+    Xv = J[:, n:, n:].reshape(intervals, stages, n, n)
+    # blocks (i, k) of h A X_v + h^2 A X_q A: a_ik X_v,k and sum_j a_ij a_jk X_q,j
+    AA = (A[:, :, None] * A[None, :, :]).transpose(0, 2, 1)  # AA[i, k, j] = a_ij a_jk
+    quad = np.tensordot(Xq, AA, axes=([1], [2])).transpose(0, 3, 4, 1, 2)  # (., i, k, n, n)
+    blocks = h * A[None, :, :, None, None] * Xv[:, None, :, :, :] + h * h * quad
+    G = -blocks.transpose(0, 1, 3, 2, 4).reshape(intervals, stages * n, stages * n)
+    G[:, np.arange(stages * n), np.arange(stages * n)] += 1.0
+    AXq = A[None, :, :, None, None] * Xq[:, None, :, :, :]  # a_ij X_q,j
+    rhs = np.zeros((intervals, stages, n, 2 * n + 1))
+    rhs[..., :n] = h * AXq.sum(axis=2)
+    rhs[:, :, np.arange(n), n + np.arange(n)] = 1.0
+    rhs[..., 2 * n] = h * np.einsum("ij,kja->kia", A, g)
+    V = np.linalg.solve(G, rhs.reshape(intervals, stages * n, 2 * n + 1))
+    V = V.reshape(intervals, stages, n, 2 * n + 1)
+    start_q = np.zeros((n, 2 * n + 1))
+    start_q[:, :n] = np.eye(n)
+    start_v = np.zeros((n, 2 * n + 1))
+    start_v[:, n : 2 * n] = np.eye(n)
+    Q = start_q + h * np.einsum("ij,kjab->kiab", A, V)  # the stage angles
+    acc = Xq @ Q + Xv @ V
+    acc[..., 2 * n] += g
+    q1 = start_q + h * np.einsum("i,kiab->kab", b, V)
+    v1 = start_v + h * np.einsum("i,kiab->kab", b, acc)
+    Phi, e = np.eye(2 * n), np.zeros(2 * n)
+    for k in range(intervals):
+        step = np.concatenate([q1[k], v1[k]], axis=0)
+        Phi, e = step[:, : 2 * n] @ Phi, step[:, : 2 * n] @ e + step[:, 2 * n]
+    return Phi, e
+
+
+#: the interval counts `collocated_multipliers` takes in turn, each checked against the one
+#: before, from the first whose 4 n collocation points are at least the orbit's M instants
+COLLOCATION_INTERVALS = (32, 64, 128)
+
+#: how the result says where its multipliers come from
+COLLOCATED_METHOD = "Radau IIA collocation (4 points an interval): stiff modes annihilated"
+
+
+def collocated_multipliers(
+    model: DiscreteModel,
+    theta: np.ndarray,
+    theta_t: np.ndarray,
+    mu_tol: float = default("numerics", "floquet_tol"),
+) -> FloquetResult | None:
+    """|mu|max of a collocated orbit by Radau IIA collocation, resolved to `mu_tol`: the interval
+    counts of COLLOCATION_INTERVALS in turn, each kept when its |mu|max and the count's before
+    it differ by at most `mu_tol` and a tenth of its distance from 1.
+
+    The result carries no defect: the offset of an L-stable product misses the stiff modes'
+    part, so it is no certificate (docs/stability.md, "Multipliers from a collocation").
+
+    Parameters
+    ----------
+    model : DiscreteModel
+        The model and its drive.
+    theta, theta_t : numpy.ndarray
+        The orbit at M equispaced instants of the period, the first at tau = 0, shape (M, n).
+    mu_tol : float
+        How closely |mu|max is resolved (`Numerics.floquet_tol`).
+
+    Returns
+    -------
+    FloquetResult or None
+        The kept product (`radius` its |mu|max, `coarse` the count before it, `method`
+        COLLOCATED_METHOD, `steps` its intervals); None when no two counts agree or the orbit
+        has more than 4 x 128 instants (the caller goes on with the exponential product).
+    """
+    t0 = time.perf_counter()
+    previous = None
+    for count in (c for c in COLLOCATION_INTERVALS if 4 * c >= theta.shape[0]):
+        check_deadline()
+        Phi, _ = collocated_monodromy(model, theta, theta_t, count)
+        current = radius_of(Phi, count)
+        current.method = COLLOCATED_METHOD
+        if previous is not None:
+            current.coarse = previous
+            if current.spread <= min(mu_tol, 0.1 * abs(1.0 - current.max_abs)):
+                current.seconds = time.perf_counter() - t0
+                return current
+        previous = current
+    return None
