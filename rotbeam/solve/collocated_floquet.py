@@ -23,13 +23,15 @@ from ..model.base import DiscreteModel
 from .floquet import FloquetResult, radius_of, trig_eval
 from .timebudget import check_deadline
 
-#: collocation points a interval (order 2 s of Gauss, 2 s - 1 of Radau IIA)
+#: collocation points an interval (order 2 s of Gauss, 2 s - 1 of Radau IIA)
 STAGES = 4
 Kind = Literal["gauss", "radau"]
 
 
-def collocation_tableau(kind: Kind, stages: int = STAGES) -> tuple[np.ndarray, np.ndarray]:
-    """The nodes and the integration matrix of s-point collocation on [0, 1].
+def collocation_tableau(
+    kind: Kind, stages: int = STAGES
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The nodes, the integration matrix and the weights of s-point collocation on [0, 1].
 
     Parameters
     ----------
@@ -37,7 +39,7 @@ def collocation_tableau(kind: Kind, stages: int = STAGES) -> tuple[np.ndarray, n
         Gauss-Legendre nodes (A-stable, |R(z)| -> 1 as z -> infinity along the imaginary axis)
         or Radau IIA nodes, the last at 1 (L-stable, R(z) -> 0).
     stages : int
-        Collocation points a interval, >= 1.
+        Collocation points an interval, >= 1.
 
     Returns
     -------
@@ -45,7 +47,9 @@ def collocation_tableau(kind: Kind, stages: int = STAGES) -> tuple[np.ndarray, n
         The nodes, shape (s,), increasing in (0, 1].
     A : numpy.ndarray
         a_ij = int_0^{c_i} l_j(t) dt with l_j the Lagrange polynomials of the nodes, shape
-        (s, s); the weights b_j = int_0^1 l_j are its last row for Radau.
+        (s, s).
+    b : numpy.ndarray
+        The weights b_j = int_0^1 l_j(t) dt, shape (s,): A's last row for Radau.
     """
     if kind == "radau":  # roots of P_s - P_{s-1} on [-1, 1], the last at 1
         coef = np.zeros(stages + 1)
@@ -74,10 +78,8 @@ def collocated_monodromy(
     """The monodromy and one-period defect of a collocated orbit by s-point collocation of its
     variational equation on equal intervals: the product of the intervals' propagators.
 
-    With z = (q, v) and J = [[0, I], [X_q, X_v]] the stage rates V solve
-    (I - h A X_v - h^2 A X_q A) V = 1 v0 + h A X_q 1 q0 + h A g (blocks over the stages, g the
-    interpolant's residual with its sign for e' = J e - r), a system of s n per interval; then
-    q1 = q0 + h sum_i b_i V_i and v1 = v0 + h sum_i b_i (X_q,i Q_i + X_v,i V_i + g_i).
+    Each interval's stage rates solve one system of s n, the angles eliminated
+    (docs/stability.md, "Multipliers from a collocation").
 
     Parameters
     ----------
@@ -90,7 +92,7 @@ def collocated_monodromy(
     kind : {"gauss", "radau"}
         The collocation nodes (`collocation_tableau`).
     stages : int
-        Collocation points a interval.
+        Collocation points an interval.
 
     Returns
     -------
