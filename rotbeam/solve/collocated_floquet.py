@@ -143,7 +143,7 @@ def collocated_monodromy(
 
 #: the interval counts `collocated_multipliers` takes in turn, each checked against the one
 #: before, from the first whose 4 n collocation points are at least the orbit's M instants
-COLLOCATION_INTERVALS = (32, 64, 128)
+COLLOCATION_INTERVALS = (16, 32, 64, 128)
 
 #: how the result says where its multipliers come from
 COLLOCATED_METHOD = "Radau IIA collocation (4 points an interval): stiff modes annihilated"
