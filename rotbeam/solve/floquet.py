@@ -91,8 +91,10 @@ class FloquetResult:
     @property
     def multipliers(self) -> np.ndarray:
         """The eigenvalues of the monodromy, complex, sorted by decreasing modulus: computed
-        when first asked (a crossing, a branch, a report of the kind of the leading one), not
-        for a verdict, which needs |mu|max alone (`max_abs`)."""
+        when first asked (a crossing, a branch, the push off an unstable orbit), not for a
+        verdict, which needs |mu|max alone (`max_abs`).  Of a Radau collocation's product
+        (`method`, `rotbeam.solve.collocated_floquet`) they are the slow modes' and near-zeros
+        for the stiff modes it annihilates."""
         if not self._multipliers:
             mu = np.linalg.eigvals(self.monodromy) if self.monodromy.size else np.zeros(0, complex)
             self._multipliers = (mu[np.argsort(-np.abs(mu), kind="stable")],)
