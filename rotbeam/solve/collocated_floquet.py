@@ -20,7 +20,7 @@ from numpy.polynomial import legendre
 
 from ..config.parameters import default
 from ..model.base import DiscreteModel
-from .floquet import FloquetResult, radius_of, trig_eval
+from .floquet import FloquetResult, _product, radius_of, trig_eval
 from .timebudget import check_deadline
 
 #: collocation points an interval (order 2 s of Gauss, 2 s - 1 of Radau IIA)
@@ -132,13 +132,11 @@ def collocated_monodromy(
     Q = start_q + h * np.einsum("ij,kjab->kiab", A, V)  # the stage angles
     acc = Xq @ Q + Xv @ V
     acc[..., 2 * n] += g
-    q1 = start_q + h * np.einsum("i,kiab->kab", b, V)
-    v1 = start_v + h * np.einsum("i,kiab->kab", b, acc)
-    Phi, e = np.eye(2 * n), np.zeros(2 * n)
-    for k in range(intervals):
-        step = np.concatenate([q1[k], v1[k]], axis=0)
-        Phi, e = step[:, : 2 * n] @ Phi, step[:, : 2 * n] @ e + step[:, 2 * n]
-    return Phi, e
+    steps = np.zeros((intervals, 2 * n + 1, 2 * n + 1))  # augmented, as the exponentials
+    steps[:, :n] = start_q + h * np.einsum("i,kiab->kab", b, V)
+    steps[:, n : 2 * n] = start_v + h * np.einsum("i,kiab->kab", b, acc)
+    steps[:, 2 * n, 2 * n] = 1.0
+    return _product(steps)
 
 
 #: the interval counts `collocated_multipliers` takes in turn, each checked against the one
