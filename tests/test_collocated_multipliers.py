@@ -11,11 +11,15 @@ import pytest
 
 from rotbeam.model.elastica import DiscreteElastica
 from rotbeam.model.params import Beam, Dimensionless, Drive, Effects
+from rotbeam.runs.nonlinear import NonlinearSpec, branch_arm
 from rotbeam.solve.certify import orbit_stability, reported_multipliers
 from rotbeam.solve.collocated_floquet import (
+    CLUSTER_MARGIN,
     COLLOCATED_METHOD,
     collocated_monodromy,
+    collocated_multipliers,
     collocation_tableau,
+    uniform_decay,
 )
 from rotbeam.solve.floquet import (
     FIRST_TRY_MAX_INSTANTS,
@@ -119,22 +123,57 @@ def _reported(omega0: float, f_d: float, M: int, N: int = 40):
     return model, res, fl, reported_multipliers(model, res, fl, SPREAD_TOL)
 
 
-@pytest.mark.parametrize(
-    "omega0, f_d, M, counts", [(5.0, 7.0, 65, (64, 32)), (10.0, 8.30, 33, (32, 16))]
-)
-def test_reported_multipliers_of_a_fine_orbit_from_radau(omega0, f_d, M, counts):
-    """The resonant benchmark scene (M = 65) and the aliasing point of the equally spaced
-    steps (10 rad/s, 8.30 Hz at M = 33, where 66 exponential steps are 7.9e-3 off): the
-    reported |mu|max comes from Radau collocation (from the first count of 4 n >= M points,
-    each checked against the one before: 64 against 32, and 32 against 16) and is within 1e-6
-    of the exponential product converged in its step count (3037 steps)."""
-    model, res, fl, reported = _reported(omega0, f_d, M)
+def test_reported_multipliers_of_a_resonant_orbit_from_radau():
+    """The resonant benchmark scene (5 rad/s, 7 Hz, M = 65; |mu|max 6e-4 above the cluster):
+    the reported |mu|max comes from Radau collocation (from the first count of 4 n >= M points,
+    64 checked against 32) and is within 1e-6 of the exponential product converged in its step
+    count (3037 steps)."""
+    model, res, fl, reported = _reported(5.0, 7.0, 65)
     assert fl.spread > SPREAD_TOL  # the candidate's count would climb the ladder
     assert reported.method == COLLOCATED_METHOD and reported.defect is None
-    assert (reported.steps, reported.coarse.steps) == counts
+    assert (reported.steps, reported.coarse.steps) == (64, 32)
     converged = beam_floquet(model, res.theta, res.theta_t, steps=3037)
     assert abs(reported.max_abs - converged.max_abs) <= 1e-6
     assert reported.spread <= SPREAD_TOL and reported.stable
+
+
+def test_the_aliasing_point_is_resolved_by_the_ladder():
+    """10 rad/s, 8.30 Hz at M = 33, where 66 equally spaced exponential steps are 7.9e-3 off:
+    its |mu|max stands 1.5e-5 above exp(-eta P / 2), inside the cluster where a mode the
+    collocation does not resolve could carry it, so the exponential ladder reports it, within
+    1e-6 of its product at 3037 steps (measured 5e-9 at 112 steps)."""
+    model, res, fl, reported = _reported(10.0, 8.30, 33)
+    assert fl.spread > SPREAD_TOL
+    assert reported.method != COLLOCATED_METHOD and reported.steps > fl.steps
+    converged = beam_floquet(model, res.theta, res.theta_t, steps=3037)
+    assert converged.max_abs < uniform_decay(model) * (1.0 + CLUSTER_MARGIN)
+    assert abs(reported.max_abs - converged.max_abs) <= 1e-6
+
+
+#: the five benchmark scenes of docs/numerics.md (Omega_0 [rad/s], f_d [Hz], M)
+BENCHMARK_SCENES = [(5.0, 2.0, 17), (5.0, 7.0, 65), (5.0, 15.0, 17), (100.0, 5.0, 17),
+                    (100.0, 30.0, 17)]  # fmt: skip
+
+
+@pytest.mark.parametrize("omega0, f_d, M", BENCHMARK_SCENES)
+def test_radau_at_128_intervals_equals_the_converged_product_at_the_benchmark_scenes(
+    omega0, f_d, M
+):
+    """At each benchmark scene (N = 40) Radau's |mu|max at 128 intervals is within 1e-6 of the
+    exponential product at 3037 steps (measured within 5e-8 at the counts that stand), and
+    only the resonant scene's stands above the cluster: the calm ones are left to the
+    exponentials (None)."""
+    dl = Dimensionless.from_physical(Beam(), Drive(omega0=omega0, f_d=f_d))
+    model = DiscreteElastica(dl, 40)
+    res = solve_periodic(model, M)
+    assert res.converged
+    converged = beam_floquet(model, res.theta, res.theta_t, steps=3037)
+    Phi, _ = collocated_monodromy(model, res.theta, res.theta_t, 128)
+    assert abs(spectral_radius(Phi) - converged.max_abs) <= 1e-6
+    above = converged.max_abs >= uniform_decay(model) * (1.0 + CLUSTER_MARGIN)
+    assert above == (f_d == 7.0)
+    reported = collocated_multipliers(model, res.theta, res.theta_t, SPREAD_TOL)
+    assert (reported is not None) == above
 
 
 def test_reported_multipliers_of_a_calm_orbit_stay_exponential():
@@ -160,3 +199,85 @@ def test_the_ladder_decides_where_radau_disagrees_or_cannot_check(monkeypatch):
         reported = reported_multipliers(model, res, fl, SPREAD_TOL)
         assert reported.method != COLLOCATED_METHOD and reported.steps > fl.steps
         assert abs(reported.max_abs - radau.max_abs) <= 1e-5
+
+
+@pytest.fixture(scope="module")
+def large_branch():
+    """The nonlinear study's arm from below at a = 3 rad/s (N = 6, M = 65; max |Theta| 1.3 to
+    2.7 rad), followed past its first fold and first period doubling."""
+    spec = NonlinearSpec(omega0=5.0, amplitude=3.0, f_lo=6.0, f_hi=8.0, N=6, beyond=18)
+    bb = branch_arm(Beam(), spec, "from_below", Effects())
+    kinds = [b.kind for b in bb.branch.bifurcations]
+    assert kinds[0] == "fold" and "period doubling" in kinds
+    return bb
+
+
+def _branch_orbit(bb, index: int):
+    """(model, Theta, Theta_t) of a branch point."""
+    point = bb.branch.points[index]
+    col = bb.problem.collocation(point.p)
+    theta = point.x.reshape(bb.problem.M, col.model.n)
+    return col.model, theta, col.D @ theta
+
+
+def _converged(model, theta, theta_t) -> tuple[float, complex]:
+    """|mu|max and the multiplier nearest -1 of the exponential midpoint product, Richardson
+    extrapolated from 9111 and 27333 steps (order 2; the two counts differ by 6e-5 at the
+    period doubling)."""
+    out = []
+    for steps in (9111, 27333):
+        mu = beam_floquet(model, theta, theta_t, steps=steps).multipliers
+        out.append((np.max(np.abs(mu)), mu[np.argmin(np.abs(mu + 1.0))]))
+    (r1, m1), (r2, m2) = out
+    return r2 + (r2 - r1) / 8.0, m2 + (m2 - m1) / 8.0
+
+
+def test_radau_next_to_the_fold_and_at_the_period_doubling(large_branch):
+    """On the large orbits of the nonlinear study (a = 3 rad/s, N = 6), where the exponential
+    ladder's 1012 steps are up to 5.5e-3 off, Radau's |mu|max (256 and 1024 intervals) is within
+    1e-6 of the converged product next to the first fold and at the first period doubling, and
+    there its multiplier nearest -1 is too (measured 2e-8, 4e-10 and 1.5e-7)."""
+    branch = large_branch.branch
+    fold = next(b.index for b in branch.bifurcations if b.kind == "fold")
+    doubling = next(b.index for b in branch.bifurcations if b.kind == "period doubling")
+    for index in (fold - 1, doubling):
+        model, theta, theta_t = _branch_orbit(large_branch, index)
+        radius, near = _converged(model, theta, theta_t)
+        reported = collocated_multipliers(model, theta, theta_t, SPREAD_TOL)
+        assert reported is not None and reported.steps >= 256
+        assert abs(reported.max_abs - radius) <= 1e-6
+        if index == doubling:
+            mu = reported.multipliers
+            assert abs(mu[np.argmin(np.abs(mu + 1.0))] - near) <= 1e-6 and near.real < -1.0
+            ladder = beam_floquet(model, theta, theta_t)
+            assert abs(ladder.max_abs - radius) > 1e-3  # what the collocation gains here
+
+
+def test_radau_is_not_reported_inside_the_cluster(large_branch):
+    """Where the large orbit's |mu|max stands within CLUSTER_MARGIN of exp(-eta P / 2) (a
+    point of the arm's calm start: every mode within 1e-4 of it, the largest not the first
+    mode), Radau's 32 and 64 intervals agree within 1e-5 but miss |mu|max by more than that:
+    the mode carrying it is still annihilated.  `collocated_multipliers` leaves such an orbit
+    to the exponentials."""
+    model, theta, theta_t = _branch_orbit(large_branch, 5)
+    radius, _ = _converged(model, theta, theta_t)
+    assert radius < uniform_decay(model) * (1.0 + CLUSTER_MARGIN)
+    coarse, fine = (
+        spectral_radius(collocated_monodromy(model, theta, theta_t, c)[0]) for c in (32, 64)
+    )
+    assert abs(fine - coarse) <= SPREAD_TOL and radius - fine > SPREAD_TOL
+    assert collocated_multipliers(model, theta, theta_t, SPREAD_TOL) is None
+
+
+def test_a_payload_leaves_the_multipliers_to_the_exponentials():
+    """With a tip mass the damping (per unit length of the beam) is not proportional to the
+    mass, the modes do not share one decay and no cluster is known: no Radau result, and the
+    reported multipliers of the resonant scene come from the exponential ladder."""
+    dl = Dimensionless.from_physical(Beam(tip_mass=0.002), Drive(omega0=5.0, f_d=7.0))
+    model = DiscreteElastica(dl, 40)
+    assert uniform_decay(model) is None
+    res = solve_periodic(model, 65)
+    assert res.converged
+    fl = orbit_stability(model, res, candidate=True)
+    assert collocated_multipliers(model, res.theta, res.theta_t, SPREAD_TOL) is None
+    assert reported_multipliers(model, res, fl, SPREAD_TOL).method != COLLOCATED_METHOD
