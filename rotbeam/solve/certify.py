@@ -160,11 +160,12 @@ def reported_multipliers(
     until |mu|max stands to `mu_tol`.
 
     An orbit of more than FIRST_TRY_MAX_INSTANTS instants takes them from a Radau collocation
-    of its variational equation (`collocated_multipliers`: 16 to 128 intervals, where the step
+    of its variational equation (`collocated_multipliers`: 16 to 1024 intervals, where the step
     ladder would climb to 337 or 1012 exponentials), checked against `fl`, which the candidate
     check resolved to a tenth of its distance from 1: where the two differ by more than that,
-    `fl`'s spread and `mu_tol` together, or no two interval counts agree, the ladder goes on
-    instead (docs/stability.md, "Multipliers from a collocation").
+    `fl`'s spread and `mu_tol` together, no two interval counts agree or the collocation's
+    |mu|max lies in the cluster of moduli it cannot tell apart, the ladder goes on instead
+    (docs/stability.md, "Multipliers from a collocation").
 
     Parameters
     ----------
