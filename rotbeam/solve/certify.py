@@ -19,7 +19,7 @@ import numpy as np
 
 from ..model.base import DiscreteModel
 from ..model.params import Dimensionless
-from .collocated_floquet import collocated_multipliers
+from .collocated_floquet import above_cluster, collocated_multipliers
 from .floquet import (
     FIRST_TRY_MAX_INSTANTS,
     SPREAD_TOL,
@@ -165,7 +165,8 @@ def reported_multipliers(
     check resolved to a tenth of its distance from 1: where the two differ by more than that,
     `fl`'s spread and `mu_tol` together, no two interval counts agree or the collocation's
     |mu|max lies in the cluster of moduli it cannot tell apart, the ladder goes on instead
-    (docs/stability.md, "Multipliers from a collocation").
+    (docs/stability.md, "Multipliers from a collocation").  Where `fl`'s |mu|max and spread
+    together stay inside that cluster, the collocation is not tried.
 
     Parameters
     ----------
@@ -190,7 +191,7 @@ def reported_multipliers(
         return fl
     if fl.steps >= STEP_LADDER[-1]:
         return fl
-    if periodic.M > FIRST_TRY_MAX_INSTANTS:
+    if periodic.M > FIRST_TRY_MAX_INSTANTS and above_cluster(model, fl.max_abs + fl.spread):
         collocated = collocated_multipliers(model, periodic.theta, periodic.theta_t, mu_tol)
         resolved = 0.1 * abs(1.0 - fl.max_abs) + fl.spread + mu_tol
         if collocated is not None and abs(collocated.max_abs - fl.max_abs) <= resolved:

@@ -180,6 +180,27 @@ def uniform_decay(model: DiscreteModel) -> float | None:
     return math.exp(-0.5 * c * model.dl.period)
 
 
+def above_cluster(model: DiscreteModel, radius: float) -> bool:
+    """Whether a |mu|max stands more than CLUSTER_MARGIN above `uniform_decay`, the cluster in
+    which a mode the collocation does not resolve may lie (False where the damping is not
+    uniform and no cluster is known).
+
+    Parameters
+    ----------
+    model : DiscreteModel
+        The model and its drive.
+    radius : float
+        A |mu|max, or a bound on it.
+
+    Returns
+    -------
+    bool
+        True where the collocation's |mu|max can be reported.
+    """
+    decay = uniform_decay(model)
+    return decay is not None and radius >= decay * (1.0 + CLUSTER_MARGIN)
+
+
 def collocated_multipliers(
     model: DiscreteModel,
     theta: np.ndarray,
@@ -192,9 +213,9 @@ def collocated_multipliers(
     its distance from 1.
 
     The collocation annihilates the modes it does not resolve.  Its |mu|max is therefore
-    reported only where it stands above the cluster those modes lie in: more than
-    CLUSTER_MARGIN above `uniform_decay` (and only for a uniformly damped model, where that
-    cluster is known).  The result carries no defect: the offset of an L-stable product misses
+    reported only where it stands above the cluster those modes lie in (`above_cluster`: more
+    than CLUSTER_MARGIN above `uniform_decay`, for a uniformly damped model, where that cluster
+    is known).  The result carries no defect: the offset of an L-stable product misses
     the stiff modes' part, so it is no certificate (docs/stability.md, "Multipliers from a
     collocation").
 
@@ -217,8 +238,7 @@ def collocated_multipliers(
         product).
     """
     t0 = time.perf_counter()
-    decay = uniform_decay(model)
-    if decay is None:
+    if uniform_decay(model) is None:
         return None
     previous = None
     for count in COLLOCATION_INTERVALS:
@@ -233,7 +253,7 @@ def collocated_multipliers(
         if previous is not None:
             current.coarse = previous
             if current.spread <= min(mu_tol, 0.1 * abs(1.0 - current.max_abs)):
-                if current.max_abs < decay * (1.0 + CLUSTER_MARGIN):
+                if not above_cluster(model, current.max_abs):
                     return None
                 current.seconds = time.perf_counter() - t0
                 return current
