@@ -1,4 +1,4 @@
-"""The work-precision benchmark's pieces (issue #5): its reference converges, the fast methods
+"""The work-precision benchmark's pieces: its reference converges, the fast methods
 agree with an independent slow one within their stated error, the Krylov Newton solve equals the
 dense one, and a micro plan writes every output.  Tolerances, never timings."""
 

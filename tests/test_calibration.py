@@ -1,4 +1,4 @@
-"""Calibration from measurements (issue 14): damping from a ring-down, E and gamma from a
+"""Calibration from measurements: damping from a ring-down, E and gamma from a
 resonance curve, the inputs' uncertainty carried to the answer.
 
 Data a fit is checked on come from elsewhere than the fitted model: ring-downs are damped

@@ -64,7 +64,7 @@ def test_periodic_state_is_a_fixed_point_of_the_period_map():
 
 def test_periodic_start_agrees_with_long_integration():
     """Two routes to the steady state: collocation + verification, and a long time integration
-    from the quasi-static state (from rest the excited grid modes make Radau crawl: issue 5)."""
+    from the quasi-static state (from rest the excited grid modes make Radau crawl)."""
     dl = dl_of(5.0, 2.0)
     a = steady(dl, Numerics(N=20, start="periodic", ss_tol=1e-4))
     b = steady(dl, Numerics(N=20, start="quasistatic", ss_tol=1e-5))

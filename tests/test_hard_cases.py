@@ -1,4 +1,4 @@
-"""Hard cases stay numerically stable (issue #6).
+"""Hard cases stay numerically stable.
 
 Every case runs the real solver (`rotbeam.runs.scene.simulate`: quasi-static Newton, periodic
 collocation, time stepping) and checks

@@ -1,4 +1,4 @@
-"""Reruns follow the code (issue 16): an edit to a rotbeam module reruns exactly the rules whose
+"""Reruns follow the code: an edit to a rotbeam module reruns exactly the rules whose
 scripts import it, transitively (and what consumes their outputs), and no simulation unless the
 simulations run it; an edit to comments and docstrings only reruns nothing.
 

@@ -1,4 +1,4 @@
-"""The workflow on a real Slurm through profiles/slurm (issue 13): a single-node cluster on this
+"""The workflow on a real Slurm through profiles/slurm: a single-node cluster on this
 machine (tests/slurm_cluster.py: munged, slurmctld and slurmd of Debian's slurm-wlm, started here
 and stopped by PID), snakemake-executor-plugin-slurm, and part of the quick config: the four
 boundary lines of the reference beam and the Fig. 3 line, with the boundary table after them,

@@ -349,7 +349,7 @@ def test_rotbeam_from_straight_rest():
 
 
 def test_no_private_scipy_import_and_same_jacobian():
-    """trbdf2 carries its own copies of scipy's private ODE helpers (issue 13): no import of a
+    """trbdf2 carries its own copies of scipy's private ODE helpers: no import of a
     private scipy module remains, and the finite-difference Jacobian equals scipy's own while
     scipy still has it; a jac_sparsity structure only zeroes the entries outside it."""
     import ast

@@ -1,4 +1,4 @@
-# Large drive around the first resonance (issue #12, docs/stability.md): branches of periodic
+# Large drive around the first resonance (docs/stability.md): branches of periodic
 # orbits with their multipliers beside time-stepped sweeps that follow the beam, and the response
 # from rest at one scene.  Not in `all`: run it as `snakemake --cores all nonlinear`.
 NONLINEAR = config.get("nonlinear") or {}

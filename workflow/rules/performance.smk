@@ -1,4 +1,4 @@
-# What accuracy costs in time: the work-precision benchmark (issue #5).  Not in `all`: run it as
+# What accuracy costs in time: the work-precision benchmark.  Not in `all`: run it as
 # `snakemake --cores all benchmark_accuracy`; it takes every core so that nothing else runs beside
 # the timings.
 
