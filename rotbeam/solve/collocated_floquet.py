@@ -197,7 +197,11 @@ def above_cluster(model: DiscreteModel, radius: float) -> bool:
     bool
         True where the collocation's |mu|max can be reported.
     """
-    decay = uniform_decay(model)
+    return _stands_above(uniform_decay(model), radius)
+
+
+def _stands_above(decay: float | None, radius: float) -> bool:
+    """`above_cluster` for a `uniform_decay` already known."""
     return decay is not None and radius >= decay * (1.0 + CLUSTER_MARGIN)
 
 
@@ -238,7 +242,8 @@ def collocated_multipliers(
         product).
     """
     t0 = time.perf_counter()
-    if uniform_decay(model) is None:
+    decay = uniform_decay(model)
+    if decay is None:
         return None
     previous = None
     for count in COLLOCATION_INTERVALS:
@@ -253,7 +258,7 @@ def collocated_multipliers(
         if previous is not None:
             current.coarse = previous
             if current.spread <= min(mu_tol, 0.1 * abs(1.0 - current.max_abs)):
-                if not above_cluster(model, current.max_abs):
+                if not _stands_above(decay, current.max_abs):
                     return None
                 current.seconds = time.perf_counter() - t0
                 return current
