@@ -271,6 +271,24 @@ def test_radau_next_to_the_fold_and_at_the_period_doubling(large_branch):
             assert abs(ladder.max_abs - radius) > 1e-3  # what the collocation gains here
 
 
+def test_branch_points_carry_multipliers_resolved_to_the_tolerance(large_branch):
+    """A branch point's multipliers are resolved like a reported orbit's, without the offset:
+    at the period doubling and next to the fold they are Radau's, within 1e-6 of the
+    converged product (where the ladder is 5e-3 off), and at the arm's first point, inside the
+    cluster, the ladder's, within `floquet_tol` (there 37 and 112 steps agree within 1e-5 and
+    miss |mu|max by 2.4e-5: only the offsets' comparison asks for more)."""
+    branch = large_branch.branch
+    fold = next(b.index for b in branch.bifurcations if b.kind == "fold")
+    doubling = next(b.index for b in branch.bifurcations if b.kind == "period doubling")
+    for index, method in ((fold - 1, COLLOCATED_METHOD), (doubling, COLLOCATED_METHOD), (0, None)):
+        fl = branch.points[index].floquet
+        radius, _ = _converged(*_branch_orbit(large_branch, index))
+        if method is None:
+            assert fl.method != COLLOCATED_METHOD and abs(fl.max_abs - radius) <= SPREAD_TOL
+        else:
+            assert fl.method == method and abs(fl.max_abs - radius) <= 1e-6
+
+
 def test_radau_is_not_reported_inside_the_cluster(large_branch):
     """Where the large orbit's |mu|max stands within CLUSTER_MARGIN of exp(-eta P / 2) (a
     point of the arm's calm start: every mode within 1e-4 of it, the largest not the first
