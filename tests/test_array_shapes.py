@@ -8,7 +8,7 @@ import pytest
 from rotbeam.runs.move import simulate_move
 from rotbeam.runs.observables import OBSERVABLES, States
 from rotbeam.runs.scene import build_scene, simulate
-from rotbeam.solve.floquet import beam_floquet, sampled_beam_floquet
+from rotbeam.solve.floquet import beam_floquet, sampled_orbit
 from rotbeam.solve.numerics import Numerics
 from rotbeam.solve.periodic import solve_periodic
 from rotbeam.solve.quasistatic import quasistatic_series
@@ -43,7 +43,7 @@ def test_collocated_orbit_is_instants_first(model):
     fl = beam_floquet(model, res.theta, res.theta_t, steps=200)
     assert fl.max_abs == pytest.approx(FLOQUET_REFERENCE, rel=1e-12)
     # the samples of one period, resampled: the same multipliers to the ladder's accuracy
-    sampled = sampled_beam_floquet(model, trig_interpolate(res.theta, 33), steps=200)
+    sampled = beam_floquet(model, *sampled_orbit(model, trig_interpolate(res.theta, 33)), steps=200)
     assert sampled.max_abs == pytest.approx(FLOQUET_REFERENCE, rel=1e-6)
 
 

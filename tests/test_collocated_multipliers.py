@@ -12,7 +12,7 @@ import pytest
 from rotbeam.model.elastica import DiscreteElastica
 from rotbeam.model.params import Beam, Dimensionless, Drive, Effects
 from rotbeam.runs.nonlinear import NonlinearSpec, branch_arm
-from rotbeam.solve.certify import orbit_stability, reported_multipliers
+from rotbeam.solve.certify import orbit_stability, reported_multipliers, window_stability
 from rotbeam.solve.collocated_floquet import (
     CLUSTER_MARGIN,
     COLLOCATED_METHOD,
@@ -26,9 +26,11 @@ from rotbeam.solve.floquet import (
     SPREAD_TOL,
     beam_floquet,
     radius_of,
+    sampled_orbit,
     spectral_radius,
 )
 from rotbeam.solve.periodic import solve_periodic
+from rotbeam.solve.spectral import trig_interpolate
 
 
 @pytest.mark.parametrize("kind, stages", [("gauss", 2), ("gauss", 4), ("radau", 2), ("radau", 4)])
@@ -287,6 +289,26 @@ def test_branch_points_carry_multipliers_resolved_to_the_tolerance(large_branch)
             assert fl.method != COLLOCATED_METHOD and abs(fl.max_abs - radius) <= SPREAD_TOL
         else:
             assert fl.method == method and abs(fl.max_abs - radius) <= 1e-6
+
+
+def test_the_orbit_time_stepping_settled_on_gets_resolved_multipliers(large_branch):
+    """`window_stability` on one period of 64 samples (resampled to 65 instants, as a window's
+    are): on the large orbit of the period doubling Radau's |mu|max, within 1e-6 of the
+    converged product where the ladder is 1e-3 off; on the arm's calm first orbit the ladder's,
+    within `floquet_tol`."""
+    branch = large_branch.branch
+    doubling = next(b.index for b in branch.bifurcations if b.kind == "period doubling")
+    for index in (doubling, 0):
+        model, theta, _ = _branch_orbit(large_branch, index)
+        samples = trig_interpolate(theta, 64)
+        radius, _ = _converged(model, *sampled_orbit(model, samples))
+        fl = window_stability(model, samples, SPREAD_TOL)
+        if index == doubling:
+            assert fl.method == COLLOCATED_METHOD and abs(fl.max_abs - radius) <= 1e-6
+            ladder = beam_floquet(model, *sampled_orbit(model, samples))
+            assert abs(ladder.max_abs - radius) > 1e-3
+        else:
+            assert fl.method != COLLOCATED_METHOD and abs(fl.max_abs - radius) <= SPREAD_TOL
 
 
 def test_radau_is_not_reported_inside_the_cluster(large_branch):

@@ -17,9 +17,9 @@ import numpy as np
 from ..model.base import DiscreteModel
 from ..model.criterion import rms
 from ..model.params import Dimensionless
-from .collocated_floquet import collocated_multipliers
+from .collocated_floquet import resolved_multipliers
 from .continuation import Branch, BranchProblem, continue_branch
-from .floquet import FloquetResult, beam_floquet
+from .floquet import FloquetResult
 from .periodic import Collocation, solve_periodic_adaptive
 from .spectral import trig_interpolate
 
@@ -115,14 +115,10 @@ class BeamBranchProblem(BranchProblem):
         return col.dense_jacobian(col.jacobian_blocks(self._X(x)))
 
     def floquet(self, x: np.ndarray, p: float) -> FloquetResult:
-        """The Floquet multipliers of the orbit, |mu|max resolved to `Numerics.floquet_tol`.
-
-        They come from a Radau collocation of the variational equation where its |mu|max
-        stands above the cluster of a uniformly damped beam (`collocated_multipliers`), else
-        from the exponential ladder (`beam_floquet`), whose 1012 steps can be 5e-3 off on the
-        large orbits past a fold.  The ladder still compares the offsets of two step counts:
-        inside the cluster two counts can agree on |mu|max and both miss it by more than
-        `floquet_tol`, and the offsets tell (docs/stability.md, "Branches in f_d").
+        """The Floquet multipliers of the orbit, |mu|max resolved to `Numerics.floquet_tol`
+        (`rotbeam.solve.collocated_floquet.resolved_multipliers`: the Radau collocation's
+        where they stand above the cluster, where the exponential ladder's 1012 steps can be
+        5e-3 off on the large orbits past a fold; docs/stability.md, "Branches in f_d").
 
         Parameters
         ----------
@@ -138,11 +134,7 @@ class BeamBranchProblem(BranchProblem):
         """
         col = self.collocation(p)
         X = self._X(x)
-        V = col.D @ X
-        collocated = collocated_multipliers(col.model, X, V)
-        if collocated is not None:
-            return collocated
-        return beam_floquet(col.model, X, V)
+        return resolved_multipliers(col.model, X, col.D @ X)
 
     def midspan(self, x: np.ndarray, p: float, samples: int = 64) -> np.ndarray:
         """The midspan deflection over one period, from the orbit's trigonometric interpolant.

@@ -19,14 +19,14 @@ import numpy as np
 
 from ..model.base import DiscreteModel
 from ..model.params import Dimensionless
-from .collocated_floquet import above_cluster, collocated_multipliers
+from .collocated_floquet import above_cluster, collocated_multipliers, resolved_multipliers
 from .floquet import (
     FIRST_TRY_MAX_INSTANTS,
     SPREAD_TOL,
     STEP_LADDER,
     FloquetResult,
     beam_floquet,
-    sampled_beam_floquet,
+    sampled_orbit,
 )
 from .numerics import Numerics
 from .periodic import PeriodicResult, refined
@@ -229,7 +229,9 @@ def leave_orbit(z: np.ndarray, fl: FloquetResult, size: float) -> np.ndarray:
     return z + LEAVE_FRACTION * max(size, 1e-12) * v
 
 
-def window_stability(model: DiscreteModel, theta_one_period: np.ndarray) -> FloquetResult | None:
+def window_stability(
+    model: DiscreteModel, theta_one_period: np.ndarray, mu_tol: float = SPREAD_TOL
+) -> FloquetResult | None:
     """Floquet multipliers of the orbit time stepping settled on, from one period of samples.
 
     Parameters
@@ -238,16 +240,19 @@ def window_stability(model: DiscreteModel, theta_one_period: np.ndarray) -> Floq
         The model and its drive.
     theta_one_period : numpy.ndarray
         Angles [rad] at m equispaced instants of the last drive period, shape (m, n).
+    mu_tol : float
+        How closely |mu|max is resolved (`Numerics.floquet_tol`).
 
     Returns
     -------
     FloquetResult or None
-        The multipliers (`rotbeam.solve.floquet.sampled_beam_floquet`); None with fewer than 8
-        samples.
+        The multipliers of the samples and their spectral derivative
+        (`rotbeam.solve.floquet.sampled_orbit`, `resolved_multipliers`: no fixed-point offset
+        is asked for); None with fewer than 8 samples.
     """
     if theta_one_period.ndim != 2 or theta_one_period.shape[0] < 8:
         return None
-    return sampled_beam_floquet(model, theta_one_period)
+    return resolved_multipliers(model, *sampled_orbit(model, theta_one_period), mu_tol)
 
 
 @dataclass(frozen=True)
@@ -557,7 +562,7 @@ def certify_window(
     orbit_fl = orbit.floquet
     fl = orbit_fl if status == 0 and periods == 1 and orbit.on_orbit else None
     if status == 0 and fl is None:
-        fl = window_stability(model, last_period)
+        fl = window_stability(model, last_period, num.floquet_tol)
         if fl is not None and fl.unstable:
             status = STATUS_UNSTABLE
             message += "; but the orbit reached is unstable (a slow transient, not a steady state)"

@@ -21,7 +21,7 @@ from numpy.polynomial import legendre
 
 from ..config.parameters import default
 from ..model.base import DiscreteModel
-from .floquet import FloquetResult, _product, radius_of, trig_eval
+from .floquet import FloquetResult, _product, beam_floquet, radius_of, trig_eval
 from .timebudget import check_deadline
 
 #: collocation points an interval (order 2 s of Gauss, 2 s - 1 of Radau IIA)
@@ -264,3 +264,38 @@ def collocated_multipliers(
                 return current
         previous = current
     return None
+
+
+def resolved_multipliers(
+    model: DiscreteModel,
+    theta: np.ndarray,
+    theta_t: np.ndarray,
+    mu_tol: float = default("numerics", "floquet_tol"),
+) -> FloquetResult:
+    """The multipliers of a periodic orbit given by its samples, |mu|max resolved to `mu_tol`,
+    where no fixed-point offset is asked for (a branch point, an orbit time stepping settled on).
+
+    They are the Radau collocation's where its |mu|max stands above the cluster
+    (`collocated_multipliers`), else the exponential ladder's (`beam_floquet`).  The ladder
+    still compares the offsets of two step counts: inside the cluster two counts can agree on
+    |mu|max and both miss it by more than `mu_tol`, and the offsets tell (docs/stability.md,
+    "Multipliers from a collocation").
+
+    Parameters
+    ----------
+    model : DiscreteModel
+        The model and its drive.
+    theta, theta_t : numpy.ndarray
+        The orbit at M equispaced instants of the period, the first at tau = 0, shape (M, n).
+    mu_tol : float
+        How closely |mu|max is resolved (`Numerics.floquet_tol`).
+
+    Returns
+    -------
+    FloquetResult
+        The multipliers (with the orbit's defect, where they come from the exponentials).
+    """
+    collocated = collocated_multipliers(model, theta, theta_t, mu_tol)
+    if collocated is not None:
+        return collocated
+    return beam_floquet(model, theta, theta_t, mu_tol=mu_tol)

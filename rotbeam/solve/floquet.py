@@ -536,13 +536,12 @@ def beam_floquet(
     return orbit_floquet(None, Z, dl.period, steps, None, rows, after, offset_atol, mu_tol)
 
 
-def sampled_beam_floquet(
-    model: DiscreteModel, theta: np.ndarray, steps: int | None = None
-) -> FloquetResult:
-    """Floquet multipliers of a time-stepped periodic orbit, from its angles over one period.
+def sampled_orbit(model: DiscreteModel, theta: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """A time-stepped periodic orbit as the multipliers take it: its angles over one period on
+    an odd number of instants and their spectral derivative.
 
-    The rates are the samples' spectral derivative; an even m is first resampled to m + 1
-    instants (no Nyquist term, whose derivative is undefined).
+    An even count m is first resampled to m + 1 instants (no Nyquist term, whose derivative is
+    undefined).
 
     Parameters
     ----------
@@ -551,16 +550,16 @@ def sampled_beam_floquet(
     theta : numpy.ndarray
         Angles [rad] at m equispaced instants of one drive period, the first at a whole number
         of periods, shape (m, n).
-    steps : int or None
-        A fixed number of Magnus steps; None: the first try, then the ladder.
 
     Returns
     -------
-    FloquetResult
-        The multipliers and the defect of the samples' interpolant.
+    theta : numpy.ndarray
+        The angles [rad] at m or m + 1 (odd) equispaced instants, shape (M, n).
+    theta_t : numpy.ndarray
+        Their rates d theta / d tau at the same instants, shape (M, n).
     """
     X, dl = np.asarray(theta, dtype=float), model.dl
     if X.shape[0] % 2 == 0:  # an odd count: no Nyquist term, whose derivative is undefined
         X = trig_eval(X, dl.period, np.arange(X.shape[0] + 1) * dl.period / (X.shape[0] + 1))
     V = trig_eval(X, dl.period, np.arange(X.shape[0]) * dl.period / X.shape[0], derivative=1)
-    return beam_floquet(model, X, V, steps)
+    return X, V
