@@ -387,3 +387,24 @@ def test_compiled_move_runs_are_the_numpy_models_stepped_by_radau(beam, monkeypa
         np.testing.assert_array_equal(got.t_s, ref.t_s)  # the same instants, the same series
         np.testing.assert_allclose(got.values, ref.values, rtol=0, atol=series_tol,
                                    err_msg=model)  # fmt: skip
+
+
+def test_the_drive_at_many_instants_is_its_closed_form(tmp_path):
+    """`DriveLaw.rows` (what the collocation and the Floquet passes read, summed as arrays for a
+    sum of harmonics) against lam = Omega T and its derivative written out for two harmonics,
+    at instants over several periods, and against the instant-by-instant law for a move."""
+    T, f_d = 0.05, 2.5
+    two = Drive(omega0=20.0, f_d=f_d, harmonics=(Harmonic(1, 1.0, 0.0), Harmonic(3, 0.5, 0.7)))
+    tau = np.linspace(-0.3, 7.0, 401) / (f_d * T)
+    lam, lam_dot = two.law(T).rows(tau)
+    w = 2 * math.pi * f_d * T
+    expected = T * (20.0 + np.sin(w * tau) + 0.5 * np.sin(3 * w * tau + 0.7))
+    expected_dot = T * (w * np.cos(w * tau) + 1.5 * w * np.cos(3 * w * tau + 0.7))
+    assert np.max(np.abs(lam - expected)) <= 1e-14 * np.max(np.abs(expected))
+    assert np.max(np.abs(lam_dot - expected_dot)) <= 1e-13 * np.max(np.abs(expected_dot))
+    move = scene({"move": str(move_file(tmp_path, 0.5))})
+    law = move.drive.law(T)
+    tau = np.linspace(0.0, 0.6 / T, 37)
+    lam, lam_dot = law.rows(tau)
+    assert np.array_equal(lam, [law.lam(t) for t in tau])
+    assert np.array_equal(lam_dot, [law.lam_dot(t) for t in tau])

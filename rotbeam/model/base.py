@@ -141,8 +141,7 @@ class DiscreteModel(ABC):
         lam, lam_dot : numpy.ndarray
             Dimensionless, shape (m,) each.
         """
-        dl = self.dl
-        return np.array([dl.lam(t) for t in tau]), np.array([dl.lam_dot(t) for t in tau])
+        return self.dl.law.rows(tau)
 
     # --- first-order form -----------------------------------------------------------------------
     def acceleration(

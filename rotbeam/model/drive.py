@@ -128,6 +128,22 @@ class DriveLaw(ABC):
         """A single run's length in units of T: its period (`MoveLaw` knows it from its samples)."""
         return self.period
 
+    def rows(self, tau: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """lam and lam_dot at many instants (`lam`, `lam_dot` one instant after the other; a
+        law that can, sums them as arrays).
+
+        Parameters
+        ----------
+        tau : numpy.ndarray
+            Instants in units of T, shape (m,).
+
+        Returns
+        -------
+        lam, lam_dot : numpy.ndarray
+            Dimensionless, shape (m,) each.
+        """
+        return np.array([self.lam(t) for t in tau]), np.array([self.lam_dot(t) for t in tau])
+
     def dense(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """The law sampled at DENSE equispaced instants of one period (or of the move).
 
@@ -139,8 +155,7 @@ class DriveLaw(ABC):
             Instants (units of T) from 0, and lam, lam_dot there; shape (DENSE,) each.
         """
         tau = np.arange(DENSE) * (self.period / DENSE)
-        lam = np.array([self.lam(t) for t in tau])
-        return tau, lam, np.array([self.lam_dot(t) for t in tau])
+        return (tau, *self.rows(tau))
 
     @property
     def mean(self) -> float:
@@ -322,22 +337,27 @@ class HarmonicLaw(DriveLaw):
         """
         return replace(self, terms=tuple((k, a * factor, ph) for k, a, ph in self.terms))
 
-    def dense(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """The law sampled at DENSE equispaced instants of one period, summed as arrays.
+    def rows(self, tau: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """lam and lam_dot at many instants, the harmonics summed as arrays.
+
+        Parameters
+        ----------
+        tau : numpy.ndarray
+            Instants in units of T, shape (m,).
 
         Returns
         -------
-        tau, lam, lam_dot : numpy.ndarray
-            Instants (units of T) from 0, and lam, lam_dot there; shape (DENSE,) each.
+        lam, lam_dot : numpy.ndarray
+            Dimensionless, shape (m,) each.
         """
-        tau = np.arange(DENSE) * (self.period / DENSE)
-        lam = np.full(DENSE, float(self.lam0))
-        lam_dot = np.zeros(DENSE)
+        tau = np.asarray(tau, dtype=float)
+        lam = np.full(tau.shape, float(self.lam0))
+        lam_dot = np.zeros(tau.shape)
         for k, a, ph in self.terms:
             arg = k * self.omega * tau + ph
             lam += a * np.sin(arg)
             lam_dot += a * (k * self.omega) * np.cos(arg)
-        return tau, lam, lam_dot
+        return lam, lam_dot
 
     @property
     def highest_harmonic(self) -> int:
