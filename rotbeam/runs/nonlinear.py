@@ -22,6 +22,7 @@ from ..model.params import Beam, Dimensionless, Drive, Effects
 from ..solve.beam_branch import BeamBranch, beam_branch
 from ..solve.continuation import Branch
 from ..solve.numerics import Numerics
+from ..solve.periodic import harmonic_tail
 from ..solve.steady import steady_state
 from .observables import OBSERVABLES, States
 from .scene import discrete_model
@@ -43,7 +44,10 @@ class NonlinearSpec:
     f_lo: float  #: [Hz]
     f_hi: float  #: [Hz]
     N: int = 8  #: grid intervals (branch and sweeps)
-    tail_tol: float = 1e-4  #: harmonic tail that fixes M at an arm's first orbit
+    tail_tol: float = 1e-4  #: harmonic tail an arm's orbits are to reach (what sets its M)
+    #: most collocation instants of an arm: it is followed again on 2 M - 1 while its orbit at
+    #: the first loss of stability has a harmonic tail above tail_tol (`resolved_arm`)
+    M_max: int = 129
     ds: float = 0.02  #: first arclength step
     ds_max: float = 0.1  #: largest arclength step
     max_points: int = 300  #: per arm
@@ -111,7 +115,9 @@ def branch_model(
     return DiscreteElastica(Dimensionless.from_physical(beam, drive, effects), N)
 
 
-def branch_arm(beam: Beam, spec: NonlinearSpec, arm: str, effects: Effects) -> BeamBranch:
+def branch_arm(
+    beam: Beam, spec: NonlinearSpec, arm: str, effects: Effects, M: int | None = None
+) -> BeamBranch:
     """One arm of the branch, stopped `spec.beyond` points past its first unstable point.
 
     Where collocation finds no orbit at the arm's end of the range, the start moves inwards by
@@ -127,6 +133,9 @@ def branch_arm(beam: Beam, spec: NonlinearSpec, arm: str, effects: Effects) -> B
         "from_below" (the orbit at f_lo continued up) or "from_above" (`ARMS`).
     effects : Effects
         Effects of the model.
+    M : int or None
+        Collocation instants of the arm; None: from its first orbit's harmonic tail
+        (`spec.tail_tol`, at most 65).
 
     Returns
     -------
@@ -147,11 +156,66 @@ def branch_arm(beam: Beam, spec: NonlinearSpec, arm: str, effects: Effects) -> B
             return beam_branch(model, beam.T, f_range,
                                tail_tol=spec.tail_tol, ds=spec.ds, ds_max=spec.ds_max,
                                max_points=spec.max_points, direction=ARMS[arm],
-                               stop=_stop_after_unstable(spec.beyond))  # fmt: skip
+                               stop=_stop_after_unstable(spec.beyond), M=M)  # fmt: skip
         except RuntimeError:
             if k == 5:
                 raise
     raise AssertionError("unreachable")
+
+
+def loss_tail(bb: BeamBranch) -> float:
+    """The harmonic tail of the arm's orbit at its first unstable point (at its last point when
+    it does not lose stability): how well M resolves the orbits the loss is read from.
+
+    Parameters
+    ----------
+    bb : BeamBranch
+        The arm.
+
+    Returns
+    -------
+    float
+        max |c_k| over the top harmonics relative to the largest (`harmonic_tail`).
+    """
+    pts = bb.branch.points
+    i = bb.branch.first_unstable()
+    at = pts[i] if i is not None else pts[-1]
+    return harmonic_tail(at.x.reshape(bb.problem.M, bb.problem.model.n))
+
+
+def resolved_arm(
+    beam: Beam, spec: NonlinearSpec, arm: str, effects: Effects
+) -> tuple[BeamBranch, BeamBranch | None]:
+    """An arm whose orbit at the first loss of stability M resolves: followed again on 2 M - 1
+    instants while that orbit's harmonic tail stays above `spec.tail_tol` and 2 M - 1 <=
+    `spec.M_max`.
+
+    The arm's M comes from its first orbit, far from the resonance; the orbits grow along the
+    arm and at M = 33 or 65 can read a loss of stability tens of mHz off (docs/stability.md,
+    "Branches in f_d").
+
+    Parameters
+    ----------
+    beam : Beam
+        The beam (SI units).
+    spec : NonlinearSpec
+        The amplitude, range, grid, continuation steps, tail_tol and M_max.
+    arm : str
+        "from_below" or "from_above" (`ARMS`).
+    effects : Effects
+        Effects of the model.
+
+    Returns
+    -------
+    arm : BeamBranch
+        The arm on the last M.
+    coarse : BeamBranch or None
+        The same arm on the M before (None when the first M resolved it).
+    """
+    bb, coarse = branch_arm(beam, spec, arm, effects), None
+    while loss_tail(bb) > spec.tail_tol and 2 * bb.problem.M - 1 <= spec.M_max:
+        bb, coarse = branch_arm(beam, spec, arm, effects, M=2 * bb.problem.M - 1), bb
+    return bb, coarse
 
 
 def first_instability(bb: BeamBranch) -> dict:
@@ -409,7 +473,13 @@ def departure(bb: BeamBranch, sweep_rows: list[dict], tol: float = 0.02) -> tupl
     return math.nan, math.nan
 
 
-def fold_row(bb: BeamBranch, arm: str, sweep_rows: list[dict], spec: NonlinearSpec) -> dict:
+def fold_row(
+    bb: BeamBranch,
+    arm: str,
+    sweep_rows: list[dict],
+    spec: NonlinearSpec,
+    coarse: BeamBranch | None = None,
+) -> dict:
     """One row of the folds table: where the arm first loses stability against where the sweep
     in the same direction leaves the arm.
 
@@ -423,6 +493,8 @@ def fold_row(bb: BeamBranch, arm: str, sweep_rows: list[dict], spec: NonlinearSp
         The sweep in the same direction (`SWEEP_OF_ARM`).
     spec : NonlinearSpec
         The amplitude and grid.
+    coarse : BeamBranch or None
+        The same arm on fewer instants (`resolved_arm`).
 
     Returns
     -------
@@ -431,7 +503,8 @@ def fold_row(bb: BeamBranch, arm: str, sweep_rows: list[dict], spec: NonlinearSp
         sweep's departure (`departure`: sweep_last_on, sweep_first_off), distance [Hz] (how far
         the loss lies outside that interval, 0 inside, nan when either is unknown), agrees
         (distance 0), the sweep's largest jump (`largest_jump`: jump_from, jump_to, jump_rms,
-        jump_share), N and M.
+        jump_share), N and M, tail (`loss_tail`), and the coarse arm's loss_kind_coarse,
+        f_loss_coarse and M_coarse (empty, nan and 0 without one).
     """
     loss = first_instability(bb)
     on, off = departure(bb, sweep_rows)
@@ -446,8 +519,18 @@ def fold_row(bb: BeamBranch, arm: str, sweep_rows: list[dict], spec: NonlinearSp
         "sweep_last_on": on, "sweep_first_off": off, "distance": dist,
         "agrees": bool(math.isfinite(dist) and dist == 0.0),
         "jump_from": jump["f_before"], "jump_to": jump["f_after"], "jump_rms": jump["jump"],
-        "jump_share": jump["share"], "N": spec.N, "M": bb.problem.M,
+        "jump_share": jump["share"], "N": spec.N, "M": bb.problem.M, "tail": loss_tail(bb),
+        **_coarse_loss(coarse),
     }  # fmt: skip
+
+
+def _coarse_loss(coarse: BeamBranch | None) -> dict:
+    """loss_kind_coarse, f_loss_coarse [Hz] and M_coarse of the arm on fewer instants."""
+    if coarse is None:
+        return {"loss_kind_coarse": "", "f_loss_coarse": math.nan, "M_coarse": 0}
+    loss = first_instability(coarse)
+    return {"loss_kind_coarse": loss["kind"], "f_loss_coarse": loss["f_loss"],
+            "M_coarse": coarse.problem.M}  # fmt: skip
 
 
 def run_amplitude(
@@ -476,15 +559,16 @@ def run_amplitude(
         the two sweeps differ (`hysteresis`; nan when they do not).
     """
     effects = effects if effects is not None else Effects()
-    rows, folds, arms = [], [], {}
+    rows, folds, arms, coarse = [], [], {}, {}
     for arm in ARMS:
         cpu = time.process_time()
-        arms[arm] = bb = branch_arm(beam, spec, arm, effects)
+        bb, coarse[arm] = resolved_arm(beam, spec, arm, effects)
+        arms[arm] = bb
         rows += arm_rows(bb, arm, spec.amplitude)
         if log is not None:
-            log.info("a = %g, arm %s: %d points, M = %d, %s (CPU %.1f s)", spec.amplitude, arm,
-                     len(bb.branch.points), bb.problem.M, bb.branch.message,
-                     time.process_time() - cpu)  # fmt: skip
+            log.info("a = %g, arm %s: %d points, M = %d (tail %.1e at the loss), %s (CPU %.1f s)",
+                     spec.amplitude, arm, len(bb.branch.points), bb.problem.M, loss_tail(bb),
+                     bb.branch.message, time.process_time() - cpu)  # fmt: skip
     sweeps = {}
     for sweep in SWEEPS:
         cpu = time.process_time()
@@ -496,7 +580,7 @@ def run_amplitude(
                      len(sweeps[sweep]), time.process_time() - cpu)  # fmt: skip
     hyst = hysteresis(sweeps["up"], sweeps["down"])
     for arm, bb in arms.items():
-        row = fold_row(bb, arm, sweeps[SWEEP_OF_ARM[arm]], spec)
+        row = fold_row(bb, arm, sweeps[SWEEP_OF_ARM[arm]], spec, coarse[arm])
         row["hysteresis_from"] = min(hyst) if hyst else math.nan
         row["hysteresis_to"] = max(hyst) if hyst else math.nan
         folds.append(row)

@@ -247,6 +247,7 @@ def beam_branch(
     on_point=None,
     direction: float = 1.0,
     stop=None,
+    M: int | None = None,
 ) -> BeamBranch:
     """Pseudo-arclength continuation of the orbit at the low end of f_range up in f_d
     (direction > 0), or of the orbit at the high end down (direction < 0).
@@ -281,6 +282,9 @@ def beam_branch(
         > 0: from f_lo upwards; < 0: from f_hi downwards.
     stop : callable or None
         stop(branch) after every new point: True ends the branch early.
+    M : int or None
+        Collocation instants (odd) of the whole branch; None: from the start orbit's harmonic
+        tail (`start_orbit`).
 
     Returns
     -------
@@ -294,7 +298,10 @@ def beam_branch(
     """
     lo, hi = min(f_range), max(f_range)
     f0 = lo if direction > 0 else hi
-    problem, x0, tail = start_orbit(model, T, f0, tail_tol)
+    if M is None:
+        problem, x0, tail = start_orbit(model, T, f0, tail_tol)
+    else:
+        problem, x0, tail = start_orbit(model, T, f0, tail_tol, M0=M, M_max=M)
     if x_scale is None:
         size = float(np.sqrt(np.mean(x0 * x0)))
         x_scale = 1.0 / size if size > 0 else 1.0

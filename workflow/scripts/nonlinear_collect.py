@@ -18,7 +18,10 @@ with job_log(snakemake.log[0], snakemake.input, snakemake.output, snakemake.rule
         f"same direction leaves the arm's stable orbits (sweep_last_on, sweep_first_off [Hz]: RMS "
         f"within 2 % of the arm's, and the next point); agrees when f_loss lies between them "
         f"(distance [Hz] outside); jump_from -> jump_to: the sweep's largest RMS change; "
-        f"hysteresis_from..to: where the up and down sweeps differ by > 10 % of the largest RMS. "
+        f"hysteresis_from..to: where the up and down sweeps differ by > 10 % of the largest RMS; "
+        f"M: the arm's collocation instants, tail: the harmonic tail of its orbit at the loss "
+        f"(the arm is followed again on 2 M - 1 while it is above tail_tol, up to M_max), "
+        f"loss_kind_coarse, f_loss_coarse: the loss on M_coarse instants. "
         f"Omega_0 = {snakemake.params.omega0:g} rad/s."
     )
     log.info("%s", folds.to_string())
