@@ -192,7 +192,7 @@ def resolved_arm(
 
     The arm's M comes from its first orbit, far from the resonance; the orbits grow along the
     arm and at M = 33 or 65 can read a loss of stability tens of mHz off (docs/stability.md,
-    "Branches in f_d").
+    "The workflow target `nonlinear`", "An arm's M").
 
     Parameters
     ----------
