@@ -232,6 +232,11 @@ def large_branch():
     return bb
 
 
+def _first(bb, kind: str) -> int:
+    """Index of the branch point after the first bifurcation of that kind."""
+    return next(b.index for b in bb.branch.bifurcations if b.kind == kind)
+
+
 def _branch_orbit(bb, index: int):
     """(model, Theta, Theta_t) of a branch point."""
     point = bb.branch.points[index]
@@ -257,9 +262,7 @@ def test_radau_next_to_the_fold_and_at_the_period_doubling(large_branch):
     ladder's 1012 steps are up to 5.5e-3 off, Radau's |mu|max (256 and 1024 intervals) is within
     1e-6 of the converged product next to the first fold and at the first period doubling, and
     there its multiplier nearest -1 is too (measured 2e-8, 4e-10 and 1.5e-7)."""
-    branch = large_branch.branch
-    fold = next(b.index for b in branch.bifurcations if b.kind == "fold")
-    doubling = next(b.index for b in branch.bifurcations if b.kind == "period doubling")
+    fold, doubling = _first(large_branch, "fold"), _first(large_branch, "period doubling")
     for index in (fold - 1, doubling):
         model, theta, theta_t = _branch_orbit(large_branch, index)
         radius, near = _converged(model, theta, theta_t)
@@ -280,8 +283,7 @@ def test_branch_points_carry_multipliers_resolved_to_the_tolerance(large_branch)
     cluster, the ladder's, within `floquet_tol` (there 37 and 112 steps agree within 1e-5 and
     miss |mu|max by 2.4e-5: only the offsets' comparison asks for more)."""
     branch = large_branch.branch
-    fold = next(b.index for b in branch.bifurcations if b.kind == "fold")
-    doubling = next(b.index for b in branch.bifurcations if b.kind == "period doubling")
+    fold, doubling = _first(large_branch, "fold"), _first(large_branch, "period doubling")
     for index, method in ((fold - 1, COLLOCATED_METHOD), (doubling, COLLOCATED_METHOD), (0, None)):
         fl = branch.points[index].floquet
         radius, _ = _converged(*_branch_orbit(large_branch, index))
@@ -296,8 +298,7 @@ def test_the_orbit_time_stepping_settled_on_gets_resolved_multipliers(large_bran
     are): on the large orbit of the period doubling Radau's |mu|max, within 1e-6 of the
     converged product where the ladder is 1e-3 off; on the arm's calm first orbit the ladder's,
     within `floquet_tol`."""
-    branch = large_branch.branch
-    doubling = next(b.index for b in branch.bifurcations if b.kind == "period doubling")
+    doubling = _first(large_branch, "period doubling")
     for index in (doubling, 0):
         model, theta, _ = _branch_orbit(large_branch, index)
         samples = trig_interpolate(theta, 64)

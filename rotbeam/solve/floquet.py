@@ -23,6 +23,7 @@ import scipy.linalg as sla
 
 from ..config.parameters import default
 from ..model.base import DiscreteModel
+from .spectral import periodic_rates, trig_interpolate
 from .timebudget import check_deadline
 
 #: an orbit counts as stable when its largest |mu| is below 1 - STABLE_MARGIN: the monodromy is
@@ -558,8 +559,7 @@ def sampled_orbit(model: DiscreteModel, theta: np.ndarray) -> tuple[np.ndarray, 
     theta_t : numpy.ndarray
         Their rates d theta / d tau at the same instants, shape (M, n).
     """
-    X, dl = np.asarray(theta, dtype=float), model.dl
+    X = np.asarray(theta, dtype=float)
     if X.shape[0] % 2 == 0:  # an odd count: no Nyquist term, whose derivative is undefined
-        X = trig_eval(X, dl.period, np.arange(X.shape[0] + 1) * dl.period / (X.shape[0] + 1))
-    V = trig_eval(X, dl.period, np.arange(X.shape[0]) * dl.period / X.shape[0], derivative=1)
-    return X, V
+        X = trig_interpolate(X, X.shape[0] + 1)
+    return X, periodic_rates(X, model.dl.period)[0]
