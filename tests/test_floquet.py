@@ -8,6 +8,7 @@ import math
 
 import numpy as np
 import pytest
+import scipy.linalg
 from conftest import steady, y_m
 from scipy.integrate import solve_ivp
 
@@ -25,6 +26,7 @@ from rotbeam.solve.floquet import (
     FloquetResult,
     beam_floquet,
     orbit_floquet,
+    top_stands_apart,
 )
 from rotbeam.solve.numerics import Numerics
 from rotbeam.solve.periodic import solve_periodic, solve_periodic_adaptive
@@ -623,3 +625,38 @@ def test_a_fixed_step_count_reports_the_leading_eigenvalue():
     assert float(np.abs(fl.multipliers[0])) == fl.max_abs
     empty = FloquetResult(np.zeros((0, 0)), 0, 0.0)
     assert empty.multipliers.size == 0 and empty.max_abs == 0.0
+
+
+def _spectrum(*mu: complex) -> FloquetResult:
+    """A product whose multipliers are `mu` (a complex one stands for its conjugate pair too):
+    rotation blocks r [[cos, -sin], [sin, cos]] and real entries on a block diagonal."""
+    blocks = []
+    for m in mu:
+        if isinstance(m, complex):
+            r, a = abs(m), np.angle(m)
+            blocks.append(r * np.array([[np.cos(a), -np.sin(a)], [np.sin(a), np.cos(a)]]))
+        else:
+            blocks.append(np.array([[m]]))
+    return FloquetResult(scipy.linalg.block_diag(*blocks), steps=1, seconds=0.0)
+
+
+@pytest.mark.parametrize(
+    "mu, stands",
+    [
+        # a calm orbit: every modulus within the tolerance of the cluster
+        ((0.9 * (1 + 5e-6) * 1j, 0.9 + 0j, 0.9 * 1j**0.3), True),
+        # a complex pair 5e-5 above the cluster, the next modulus 4e-5 below it: apart
+        ((0.9 * (1 + 5e-5) * 1j**0.5, 0.9 * (1 + 1e-5) * 1j**0.2), True),
+        # two pairs 5e-5 and 4.5e-5 above the cluster: the counts may swap them
+        ((0.9 * (1 + 5e-5) * 1j**0.5, 0.9 * (1 + 4.5e-5) * 1j**0.2), False),
+        # a real multiplier and a complex pair 3e-6 apart, both well above the cluster
+        ((0.95, 0.95 * (1 - 3e-6) * 1j**0.7), False),
+        # alone above the cluster
+        ((0.95,), True),
+    ],
+)
+def test_top_stands_apart_from_the_next_modulus(mu, stands):
+    """|mu|max stands where it lies within floquet_tol of the cluster (0.9) or more than that
+    above every other modulus but its own conjugate's."""
+    fl = _spectrum(*mu)
+    assert top_stands_apart(fl, 0.9, SPREAD_TOL) is stands

@@ -19,13 +19,19 @@ import numpy as np
 
 from ..model.base import DiscreteModel
 from ..model.params import Dimensionless
-from .collocated_floquet import above_cluster, collocated_multipliers, resolved_multipliers
+from .collocated_floquet import (
+    above_cluster,
+    collocated_multipliers,
+    resolved_multipliers,
+    uniform_decay,
+)
 from .floquet import (
     FIRST_TRY_MAX_INSTANTS,
     SPREAD_TOL,
     STEP_LADDER,
     FloquetResult,
     beam_floquet,
+    first_try_stands,
     sampled_orbit,
 )
 from .numerics import Numerics
@@ -166,7 +172,10 @@ def reported_multipliers(
     `fl`'s spread and `mu_tol` together, no two interval counts agree or the collocation's
     |mu|max lies in the cluster of moduli it cannot tell apart, the ladder goes on instead
     (docs/stability.md, "Multipliers from a collocation").  Where `fl`'s |mu|max and spread
-    together stay inside that cluster, the collocation is not tried.
+    together stay inside that cluster, the collocation is not tried.  A step count stands only
+    where its |mu|max also stands apart from the next modulus or lies at the cluster
+    (`rotbeam.solve.floquet.top_stands_apart`): two counts can agree on |mu|max and both miss
+    it where the order of two moduli above the cluster swaps between them.
 
     Parameters
     ----------
@@ -184,12 +193,13 @@ def reported_multipliers(
     Returns
     -------
     FloquetResult or None
-        `fl` when its spread is already within `mu_tol` (or it has no comparison: a fixed
-        count), else the finer pass.
+        `fl` when it already stands to `mu_tol` (or it has no comparison: a fixed count, or
+        the ladder's last), else the finer pass.
     """
-    if fl is None or fl.coarse is None or fl.spread <= mu_tol:
+    if fl is None or fl.coarse is None or fl.steps >= STEP_LADDER[-1]:
         return fl
-    if fl.steps >= STEP_LADDER[-1]:
+    cluster = uniform_decay(model)
+    if first_try_stands(fl, 0.0, math.inf, mu_tol, cluster):
         return fl
     if periodic.M > FIRST_TRY_MAX_INSTANTS and above_cluster(model, fl.max_abs + fl.spread):
         collocated = collocated_multipliers(model, periodic.theta, periodic.theta_t, mu_tol)
@@ -197,7 +207,7 @@ def reported_multipliers(
         if collocated is not None and abs(collocated.max_abs - fl.max_abs) <= resolved:
             return collocated
     return beam_floquet(model, periodic.theta, periodic.theta_t, after=fl, offset_atol=math.inf,
-                        mu_tol=mu_tol)  # fmt: skip
+                        mu_tol=mu_tol, cluster=cluster)  # fmt: skip
 
 
 def leave_orbit(z: np.ndarray, fl: FloquetResult, size: float) -> np.ndarray:

@@ -319,11 +319,46 @@ def trig_eval(X: np.ndarray, period: float, t: np.ndarray, derivative: int = 0) 
     return np.real(np.tensordot(E, C, axes=(1, 0)))
 
 
+def top_stands_apart(fl: FloquetResult, cluster: float, mu_tol: float) -> bool:
+    """Whether a product tells |mu|max apart from the other moduli: it lies within `mu_tol` of
+    `cluster` (a calm orbit, whose moduli all lie there), or more than `mu_tol` above every
+    other multiplier but its complex conjugate.
+
+    Two step counts can agree on |mu|max to `mu_tol` and both miss it where two moduli above
+    the cluster lie closer than that: the counts' errors swap their order (docs/stability.md,
+    "How the multipliers are computed").
+
+    Parameters
+    ----------
+    fl : FloquetResult
+        The product.
+    cluster : float
+        The modulus every multiplier shares but for the orbit's coupling (a uniformly damped
+        beam's exp(-c P / 2): `rotbeam.solve.collocated_floquet.uniform_decay`).
+    mu_tol : float
+        How closely |mu|max is resolved.
+
+    Returns
+    -------
+    bool
+        True where |mu|max stands apart (or at the cluster); False where the next modulus lies
+        within `mu_tol` of it.
+    """
+    if fl.max_abs - cluster <= mu_tol:
+        return True
+    mu = fl.multipliers
+    top, rest = mu[0], mu[1:]
+    if rest.size and abs(top.imag) > 1e-12 * abs(top):  # its conjugate shares its modulus
+        rest = np.delete(rest, int(np.argmin(np.abs(rest - np.conj(top)))))
+    return not rest.size or bool(abs(top) - np.max(np.abs(rest)) > mu_tol)
+
+
 def first_try_stands(
     first: FloquetResult,
     size: float,
     offset_atol: float | None = None,
     mu_tol: float = SPREAD_TOL,
+    cluster: float | None = None,
 ) -> bool:
     """Whether a product's |mu|max and fixed-point offset are as good as a finer step count's,
     judged by their distance from the product it was checked against (`coarse`).
@@ -349,6 +384,9 @@ def first_try_stands(
     mu_tol : float
         The tolerance of |mu|max's spread; inf: only the verdict's (a tenth of the distance
         from 1).
+    cluster : float or None
+        Where every modulus lies but for the orbit's coupling; where given, |mu|max must also
+        stand apart from the next modulus (`top_stands_apart`).
 
     Returns
     -------
@@ -356,6 +394,8 @@ def first_try_stands(
         True when the product stands; False when a finer step count is needed.
     """
     if first.spread > min(mu_tol, 0.1 * abs(1.0 - first.max_abs)):
+        return False
+    if cluster is not None and not top_stands_apart(first, cluster, mu_tol):
         return False
     if offset_atol == math.inf:
         return True
@@ -414,6 +454,7 @@ def orbit_floquet(
     after: FloquetResult | None = None,
     offset_atol: float | None = None,
     mu_tol: float = SPREAD_TOL,
+    cluster: float | None = None,
 ) -> FloquetResult:
     """Floquet multipliers of a periodic orbit of a first-order system z' = f(t, z), given by
     its states at M equispaced instants of the period.
@@ -449,6 +490,9 @@ def orbit_floquet(
         (`first_try_stands`).
     mu_tol : float
         How far their |mu|max may differ (`first_try_stands`).
+    cluster : float or None
+        Where every modulus lies but for the orbit's coupling: |mu|max must also stand apart
+        from the next modulus (`top_stands_apart`); None: no such check.
 
     Returns
     -------
@@ -468,7 +512,7 @@ def orbit_floquet(
         previous = radius_of(Phi, FIRST_STEPS, defect)
         if resolved:  # the first try may stand, checked against its coarse product
             previous.coarse = radius_of(low[0], FIRST_STEPS // 3, low[1])
-            if first_try_stands(previous, size, offset_atol, mu_tol):
+            if first_try_stands(previous, size, offset_atol, mu_tol, cluster):
                 previous.seconds = time.perf_counter() - t0
                 return previous
     for count in (S for S in STEP_LADDER if S > previous.steps):
@@ -476,7 +520,7 @@ def orbit_floquet(
         current = radius_of(Phi, count, defect)
         current.coarse = _alone(previous)
         previous = current
-        if first_try_stands(current, size, offset_atol, mu_tol):
+        if first_try_stands(current, size, offset_atol, mu_tol, cluster):
             break
     previous.seconds = time.perf_counter() - t0
     return previous
@@ -497,6 +541,7 @@ def beam_floquet(
     after: FloquetResult | None = None,
     offset_atol: float | None = None,
     mu_tol: float = SPREAD_TOL,
+    cluster: float | None = None,
 ) -> FloquetResult:
     """Floquet multipliers and one-period defect of a collocated orbit of the beam.
 
@@ -521,6 +566,8 @@ def beam_floquet(
         How far two counts' fixed-point offsets may differ (`first_try_stands`).
     mu_tol : float
         How far their |mu|max may differ (`first_try_stands`).
+    cluster : float or None
+        Where every modulus lies but for the orbit's coupling (`top_stands_apart`).
 
     Returns
     -------
@@ -534,7 +581,7 @@ def beam_floquet(
         return model.first_order_rows(Z[:, :n], Z[:, n:], lam, lam_dot)
 
     Z = np.concatenate([theta, theta_t], axis=1)
-    return orbit_floquet(None, Z, dl.period, steps, None, rows, after, offset_atol, mu_tol)
+    return orbit_floquet(None, Z, dl.period, steps, None, rows, after, offset_atol, mu_tol, cluster)
 
 
 def sampled_orbit(model: DiscreteModel, theta: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
