@@ -25,6 +25,7 @@ from matplotlib.text import Text  # noqa: E402
 from rotbeam.model.params import Beam  # noqa: E402
 from rotbeam.paper import figures  # noqa: E402
 from rotbeam.paper.studies import fig7_beams  # noqa: E402
+from rotbeam.report import nonlinear_figures  # noqa: E402
 from rotbeam.report.style import legend_in_headroom, panel_label  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -326,3 +327,48 @@ def test_every_y_m_axis_says_its_unit(drawn, name):
     labels = [ax.get_ylabel() for ax in drawn(name).axes if "y_m" in ax.get_ylabel()]
     assert labels
     assert all(label.rstrip().endswith("/ L") for label in labels), labels
+
+
+def branch_rows(unsteady: bool) -> tuple[pd.DataFrame, pd.DataFrame]:
+    """Branch and sweep rows of one amplitude: a stable arm from below ending at a fold and an
+    up-sweep on it, steady; with `unsteady`, an arm from above turning unstable at a period
+    doubling and a torus, and a down-sweep with a point that reached no steady state."""
+    f = np.linspace(6.0, 6.9, 4)
+    rows = [{"kind": "branch", "arm": "from_below", "index": k, "f_d": x, "rms_ym": 0.2 + 0.1 * k,
+             "stable": True, "bifurcation": "fold" if k == 3 else None, "status": np.nan}
+            for k, x in enumerate(f)]  # fmt: skip
+    rows += [{"kind": "sweep", "arm": "up", "index": k, "f_d": x, "rms_ym": 0.2 + 0.1 * k,
+              "stable": True, "bifurcation": None, "status": 0}
+             for k, x in enumerate(f[:2])]  # fmt: skip
+    if unsteady:
+        rows += [{"kind": "branch", "arm": "from_above", "index": k, "f_d": 8.0 - 0.3 * k,
+                  "rms_ym": 0.1 + 0.05 * k, "stable": k < 2, "status": np.nan,
+                  "bifurcation": "period doubling+torus" if k == 2 else None}
+                 for k in range(4)]  # fmt: skip
+        rows += [{"kind": "sweep", "arm": "down", "index": k, "f_d": 8.0 - 0.3 * k,
+                  "rms_ym": 0.1 + 0.05 * k, "stable": True, "bifurcation": None,
+                  "status": 1 if k == 1 else 0} for k in range(2)]  # fmt: skip
+    frame = pd.DataFrame(rows).assign(amplitude=1.0)
+    return frame, pd.DataFrame({"amplitude": [1.0], "f_loss": [6.9]})
+
+
+@pytest.mark.parametrize(
+    "unsteady, labels",
+    [
+        (False, ["branch from below (stable)", "fold (mu through +1)", "sweep up"]),
+        (True, ["branch from below (stable)", "branch from above (stable)", "unstable",
+                "fold (mu through +1)", "period doubling (mu through -1)",
+                "torus (complex pair through |mu| = 1)", "sweep up", "sweep down",
+                "sweep point not steady"]),
+    ],
+)  # fmt: skip
+def test_the_branches_legend_lists_only_what_is_drawn(monkeypatch, unsteady, labels):
+    """The nonlinear study's figure names each kind of mark its rows draw and none they do not:
+    with every sweep point steady there is no "not steady" entry."""
+    caught = []
+    monkeypatch.setattr(nonlinear_figures, "save", lambda fig, pdf, png=None: caught.append(fig))
+    rows, folds = branch_rows(unsteady)
+    nonlinear_figures.branches_figure(rows, folds, 5.0, "b.pdf", "b.png")
+    (legend,) = caught[0].legends
+    assert [t.get_text() for t in legend.get_texts()] == labels
+    plt.close("all")

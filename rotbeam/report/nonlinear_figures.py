@@ -1,6 +1,7 @@
-"""The nonlinear resonance: branches of periodic orbits (stable solid, unstable dashed, folds and
-period doublings marked) beside the sweeps that follow the beam, one column per amplitude; and
-the response at one scene from rest (section and the Lyapunov exponent's convergence)."""
+"""The nonlinear resonance: branches of periodic orbits (stable solid, unstable dashed, folds,
+period doublings and tori marked) beside the sweeps that follow the beam, one column per
+amplitude; and the response at one scene from rest (section and the Lyapunov exponent's
+convergence)."""
 
 from __future__ import annotations
 
@@ -12,7 +13,12 @@ import pandas as pd
 
 from .style import ACCENT, DYN, GREY, QS, figure, save
 
-MARKS = {"fold": ("o", "k"), "period doubling": ("s", "#9467bd")}
+#: the marker and colour of each loss of stability a branch shows, and its legend entry
+MARKS = {
+    "fold": ("o", "k", "fold (mu through +1)"),
+    "period doubling": ("s", "#9467bd", "period doubling (mu through -1)"),
+    "torus": ("D", "#8c564b", "torus (complex pair through |mu| = 1)"),
+}
 
 
 def _segments(arm: pd.DataFrame):
@@ -26,8 +32,9 @@ def _segments(arm: pd.DataFrame):
 
 
 def _crossings(arm: pd.DataFrame):
-    """(f_d, rms, kind) of the folds (a real multiplier through +1) and period doublings
-    (through -1) the continuation detected, at the point after each."""
+    """(f_d, rms, kind) of the folds (a real multiplier through +1), period doublings (through
+    -1) and tori (a complex pair through |mu| = 1) the continuation detected, at the point after
+    each."""
     for _, r in arm.iterrows():
         kinds = str(r["bifurcation"]) if isinstance(r["bifurcation"], str) else ""
         for kind in MARKS:
@@ -42,7 +49,7 @@ def _panel(ax, rows: pd.DataFrame, folds: pd.DataFrame, a: float) -> None:
         for seg, stable in _segments(arm):
             ax.plot(seg["f_d"], seg["rms_ym"], color=color, ls="-" if stable else "--", lw=1.2)
         for f, y, kind in _crossings(arm):
-            m, c = MARKS[kind]
+            m, c, _ = MARKS[kind]
             ax.plot(f, y, m, mfc="none", mec=c, ms=6)
     for name, m, color in (("up", "^", QS), ("down", "v", GREY)):
         sw = rows[(rows["kind"] == "sweep") & (rows["arm"] == name)]
@@ -76,6 +83,38 @@ def _zoom(ax, rows: pd.DataFrame, folds: pd.DataFrame, a: float, margin: float =
     ax.set_title(f"a = {a:g} rad/s, near the losses of stability", loc="left")
 
 
+def legend_entries(rows: pd.DataFrame) -> list[tuple[str, dict]]:
+    """The legend of `branches_figure`: an entry for each kind of mark the rows draw, none for
+    one they do not (a sweep whose points all reached a steady state lists no "not steady").
+
+    Parameters
+    ----------
+    rows : pandas.DataFrame
+        Branch and sweep points, as `branches_figure` takes them.
+
+    Returns
+    -------
+    list of (str, dict)
+        Each entry's label and the `plot` keywords of its handle, in the legend's order.
+    """
+    br, sw = rows[rows["kind"] == "branch"], rows[rows["kind"] == "sweep"]
+    kinds = {k for b in br["bifurcation"].dropna().astype(str) for k in b.split("+")}
+    entries = [
+        ("branch from below (stable)", {"color": DYN}, (br["arm"] == "from_below").any()),
+        ("branch from above (stable)", {"color": ACCENT}, (br["arm"] == "from_above").any()),
+        ("unstable", {"color": "k", "ls": "--"}, (~br["stable"].astype(bool)).any()),
+    ]
+    entries += [(label, {"marker": m, "mfc": "none", "mec": c, "ls": "none"}, kind in kinds)
+                for kind, (m, c, label) in MARKS.items()]  # fmt: skip
+    entries += [
+        ("sweep up", {"marker": "^", "color": QS, "ls": "none"}, (sw["arm"] == "up").any()),
+        ("sweep down", {"marker": "v", "color": GREY, "ls": "none"}, (sw["arm"] == "down").any()),
+        ("sweep point not steady", {"marker": "^", "mfc": "none", "mec": "r", "ls": "none"},
+         (sw["status"] != 0).any()),
+    ]  # fmt: skip
+    return [(label, style) for label, style, drawn in entries if drawn]
+
+
 def branches_figure(
     rows: pd.DataFrame, folds: pd.DataFrame, omega0: float, pdf: str | Path, png: str | Path
 ) -> None:
@@ -104,20 +143,10 @@ def branches_figure(
         _panel(axes[0, k], sub, folds, a)
         _panel(axes[1, k], sub, folds, a)
         _zoom(axes[1, k], sub, folds, a)
-    h = [
-        axes[0, 0].plot([], [], color=DYN)[0],
-        axes[0, 0].plot([], [], color=ACCENT)[0],
-        axes[0, 0].plot([], [], color="k", ls="--")[0],
-        axes[0, 0].plot([], [], "o", mfc="none", mec="k")[0],
-        axes[0, 0].plot([], [], "s", mfc="none", mec=MARKS["period doubling"][1])[0],
-        axes[0, 0].plot([], [], "^", color=QS)[0],
-        axes[0, 0].plot([], [], "v", color=GREY)[0],
-        axes[0, 0].plot([], [], "^", mfc="none", mec="r")[0],
-    ]
-    labels = ["branch from below (stable)", "branch from above (stable)", "unstable",
-              "fold (mu through +1)", "period doubling (mu through -1)", "sweep up",
-              "sweep down", "sweep point not steady"]  # fmt: skip
-    fig.legend(h, labels, loc="outside lower center", ncols=4 if ncols >= 3 else 2)
+    entries = legend_entries(rows)
+    h = [axes[0, 0].plot([], [], **style)[0] for _, style in entries]
+    fig.legend(h, [label for label, _ in entries], loc="outside lower center",
+               ncols=4 if ncols >= 3 else 2)  # fmt: skip
     fig.suptitle(rf"Periodic orbits and sweeps at $\Omega_0$ = {omega0:g} rad/s")
     save(fig, Path(pdf), Path(png))
 
