@@ -25,13 +25,14 @@ from rotbeam.solve.collocated_floquet import (
 from rotbeam.solve.floquet import (
     FIRST_TRY_MAX_INSTANTS,
     SPREAD_TOL,
+    STEP_LADDER,
     beam_floquet,
     radius_of,
     sampled_orbit,
     spectral_radius,
 )
 from rotbeam.solve.numerics import Numerics
-from rotbeam.solve.periodic import solve_periodic
+from rotbeam.solve.periodic import PeriodicResult, solve_periodic
 from rotbeam.solve.spectral import trig_interpolate
 
 
@@ -362,3 +363,27 @@ def test_reported_multipliers_where_two_moduli_above_the_cluster_swap():
     decay = uniform_decay(model)
     assert decay + 5 * SPREAD_TOL < converged < decay * (1.0 + CLUSTER_MARGIN)
     assert abs(reported.max_abs - converged) <= scene.numerics.floquet_tol
+
+
+def test_a_candidate_at_the_ladders_end_is_reported_from_radau(large_branch):
+    """The stable orbits of the a = 3 rad/s arm past its first fold whose candidate check
+    climbed to the ladder's last count (1012 steps) without standing to floquet_tol (spread
+    5e-4 to 1e-3; |mu|max 7e-5 to 1.2e-4 off): where Radau answers, the reported |mu|max is
+    Radau's, within 1e-6 of the converged product."""
+    checked = 0
+    for index in range(len(large_branch.branch.points)):
+        model, theta, theta_t = _branch_orbit(large_branch, index)
+        M = theta.shape[0]
+        orbit = PeriodicResult(np.arange(M) / M * model.dl.period, theta, theta_t, True, 0, 0.0,
+                               0.0, M, "")  # fmt: skip
+        fl = orbit_stability(model, orbit, candidate=True)
+        if not (fl.stable and fl.steps == STEP_LADDER[-1] and fl.spread > SPREAD_TOL):
+            continue
+        if collocated_multipliers(model, theta, theta_t, SPREAD_TOL) is None:
+            continue
+        radius, _ = _converged(model, theta, theta_t)
+        assert abs(fl.max_abs - radius) > SPREAD_TOL  # the candidate misses it
+        reported = reported_multipliers(model, orbit, fl, SPREAD_TOL)
+        assert reported.method == COLLOCATED_METHOD and abs(reported.max_abs - radius) <= 1e-6
+        checked += 1
+    assert checked >= 2

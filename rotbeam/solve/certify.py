@@ -193,10 +193,11 @@ def reported_multipliers(
     Returns
     -------
     FloquetResult or None
-        `fl` when it already stands to `mu_tol` (or it has no comparison: a fixed count, or
-        the ladder's last), else the finer pass.
+        `fl` when it already stands to `mu_tol` (or it has no comparison: a fixed count), else
+        the finer pass: Radau's, or the ladder's next counts (`fl` itself where the candidate
+        check already climbed to the ladder's last count and Radau does not answer).
     """
-    if fl is None or fl.coarse is None or fl.steps >= STEP_LADDER[-1]:
+    if fl is None or fl.coarse is None:
         return fl
     cluster = uniform_decay(model)
     if first_try_stands(fl, 0.0, math.inf, mu_tol, cluster):
@@ -206,6 +207,8 @@ def reported_multipliers(
         resolved = 0.1 * abs(1.0 - fl.max_abs) + fl.spread + mu_tol
         if collocated is not None and abs(collocated.max_abs - fl.max_abs) <= resolved:
             return collocated
+    if fl.steps >= STEP_LADDER[-1]:  # the ladder ends here
+        return fl
     return beam_floquet(model, periodic.theta, periodic.theta_t, after=fl, offset_atol=math.inf,
                         mu_tol=mu_tol, cluster=cluster)  # fmt: skip
 
