@@ -29,6 +29,7 @@ from .floquet import (
     FIRST_TRY_MAX_INSTANTS,
     SPREAD_TOL,
     STEP_LADDER,
+    VERDICT_ONLY,
     FloquetResult,
     beam_floquet,
     first_try_stands,
@@ -197,7 +198,7 @@ def reported_multipliers(
         the finer pass: Radau's, or the ladder's next counts (`fl` itself where the candidate
         check already climbed to the ladder's last count and Radau does not answer).
     """
-    if fl is None or fl.coarse is None:
+    if fl is None or fl.coarse is None or mu_tol >= VERDICT_ONLY:
         return fl
     cluster = uniform_decay(model)
     if first_try_stands(fl, 0.0, math.inf, mu_tol, cluster):
