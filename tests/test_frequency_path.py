@@ -16,7 +16,10 @@ from rotbeam.runs.scene import build_scene
 from rotbeam.solve.periodic import (
     FREQUENCY_PATH,
     FREQUENCY_PATH_ABOVE,
+    REFINE_MAXITER,
     _frequency_continuation,
+    refined,
+    solve_periodic,
     solve_periodic_adaptive,
 )
 
@@ -89,3 +92,24 @@ def test_a_payload_past_the_fold_from_the_command_line_and_python():
     stepped = rotbeam.simulate(build_scene({**PAST_FOLD_PAYLOAD, "numerics": numerics}))
     assert stepped.dynamic.converged and stepped.dynamic.periods > 0
     assert direct.rms_dynamic == pytest.approx(stepped.rms_dynamic, rel=1e-6)
+
+
+def test_a_refinement_stops_at_its_cap_where_its_start_resolves_nothing():
+    """At 5 rad/s, 6.85 Hz (N = 40) the linear guess converges on 17 instants to an orbit with
+    harmonic tail 8.6e-2 that is no coarse image of the resonant one: its refinement ends
+    unconverged after REFINE_MAXITER Newton steps (23 without the cap), and the scene still
+    reaches its resonant orbit on 129 instants.  From the resolved orbit at 7 Hz the refinement
+    meets its tolerance well inside the cap."""
+    for f_d, resolved in ((6.85, False), (7.0, True)):
+        scene = build_scene({"drive": {"omega0": 5, "f_d": f_d}})
+        model = scene.model(scene.numerics.N)
+        coarse = solve_periodic(model, 17)
+        assert coarse.converged
+        finer = refined(model, coarse)
+        assert finer.converged is resolved
+        if resolved:
+            assert finer.iterations <= REFINE_MAXITER // 2
+        else:
+            assert finer.iterations == REFINE_MAXITER and coarse.harmonic_tail > 5e-2
+    result = rotbeam.simulate(build_scene({"drive": {"omega0": 5, "f_d": 6.85}}))
+    assert result.converged and result.dynamic.periodic.M == 129 and result.dynamic.periods == 0
