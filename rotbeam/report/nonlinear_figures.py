@@ -31,14 +31,19 @@ def _segments(arm: pd.DataFrame):
             start = k
 
 
+def _kinds(cell) -> list[str]:
+    """The bifurcations a row of `branches.csv` names ("fold", "period doubling+torus", empty)."""
+    return cell.split("+") if isinstance(cell, str) and cell else []
+
+
 def _crossings(arm: pd.DataFrame):
     """(f_d, rms, kind) of the folds (a real multiplier through +1), period doublings (through
     -1) and tori (a complex pair through |mu| = 1) the continuation detected, at the point after
     each."""
     for _, r in arm.iterrows():
-        kinds = str(r["bifurcation"]) if isinstance(r["bifurcation"], str) else ""
+        kinds = _kinds(r["bifurcation"])
         for kind in MARKS:
-            if kind in kinds.split("+"):
+            if kind in kinds:
                 yield r["f_d"], r["rms_ym"], kind
 
 
@@ -98,7 +103,7 @@ def legend_entries(rows: pd.DataFrame) -> list[tuple[str, dict]]:
         Each entry's label and the `plot` keywords of its handle, in the legend's order.
     """
     br, sw = rows[rows["kind"] == "branch"], rows[rows["kind"] == "sweep"]
-    kinds = {k for b in br["bifurcation"].dropna().astype(str) for k in b.split("+")}
+    kinds = {k for cell in br["bifurcation"] for k in _kinds(cell)}
     entries = [
         ("branch from below (stable)", {"color": DYN}, (br["arm"] == "from_below").any()),
         ("branch from above (stable)", {"color": ACCENT}, (br["arm"] == "from_above").any()),
