@@ -203,7 +203,7 @@ def reported_multipliers(
     cluster = uniform_decay(model)
     if first_try_stands(fl, 0.0, math.inf, mu_tol, cluster):
         return fl
-    if periodic.M > FIRST_TRY_MAX_INSTANTS and above_cluster(model, fl.max_abs + fl.spread):
+    if periodic.M > FIRST_TRY_MAX_INSTANTS and above_cluster(cluster, fl.max_abs + fl.spread):
         collocated = collocated_multipliers(model, periodic.theta, periodic.theta_t, mu_tol)
         resolved = 0.1 * abs(1.0 - fl.max_abs) + fl.spread + mu_tol
         if collocated is not None and abs(collocated.max_abs - fl.max_abs) <= resolved:

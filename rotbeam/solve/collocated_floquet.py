@@ -180,15 +180,15 @@ def uniform_decay(model: DiscreteModel) -> float | None:
     return math.exp(-0.5 * c * model.dl.period)
 
 
-def above_cluster(model: DiscreteModel, radius: float) -> bool:
+def above_cluster(decay: float | None, radius: float) -> bool:
     """Whether a |mu|max stands more than CLUSTER_MARGIN above `uniform_decay`, the cluster in
     which a mode the collocation does not resolve may lie (False where the damping is not
     uniform and no cluster is known).
 
     Parameters
     ----------
-    model : DiscreteModel
-        The model and its drive.
+    decay : float or None
+        The model's `uniform_decay` (None: not uniformly damped).
     radius : float
         A |mu|max, or a bound on it.
 
@@ -197,11 +197,6 @@ def above_cluster(model: DiscreteModel, radius: float) -> bool:
     bool
         True where the collocation's |mu|max can be reported.
     """
-    return _stands_above(uniform_decay(model), radius)
-
-
-def _stands_above(decay: float | None, radius: float) -> bool:
-    """`above_cluster` for a `uniform_decay` already known."""
     return decay is not None and radius >= decay * (1.0 + CLUSTER_MARGIN)
 
 
@@ -258,7 +253,7 @@ def collocated_multipliers(
         if previous is not None:
             current.coarse = previous
             if current.spread <= min(mu_tol, 0.1 * abs(1.0 - current.max_abs)):
-                if not _stands_above(decay, current.max_abs):
+                if not above_cluster(decay, current.max_abs):
                     return None
                 current.seconds = time.perf_counter() - t0
                 return current
